@@ -1,0 +1,31 @@
+//! Elastic bodies under the layer: the influence kernel that maps a pressure
+//! uniform over one surface cell to the normal surface displacement at every cell
+//! centre (paper eq. 9 for a homogeneous half-space, eq. 10 for a coated one), and
+//! its DC-FFT spectrum, built once per grid and material.
+
+pub mod homogeneous;
+
+use std::sync::Arc;
+
+use crate::case::Body;
+use crate::convolution::{ConvolutionPlan, KernelSpectrum};
+use crate::error::Result;
+use crate::grid::Grid;
+
+/// The surface-displacement kernel spectrum of `body` on `grid`'s cells.
+pub fn surface_kernel_spectrum(
+    body: &Body,
+    grid: &Grid,
+    plan: &Arc<ConvolutionPlan>,
+) -> Result<KernelSpectrum> {
+    match *body {
+        Body::Homogeneous(material) => Ok(plan.kernel_spectrum(
+            homogeneous::homogeneous_surface_kernel(material, grid.cell),
+        )),
+        Body::Coated { .. } => Err(crate::error::Error::invalid(
+            "coating",
+            "a coated body",
+            "a homogeneous body (coated bodies are not implemented yet)",
+        )),
+    }
+}

@@ -1,0 +1,211 @@
+//! A contact case: slider shape, elastic body, third-body layer, loading and grid,
+//! in one consistent system of units (dimensionless with R = E2 = T = 1 as in the
+//! paper's section 4, or SI). [`Case::validate`] checks every field against its
+//! physical range and names the field in the error; the solver assumes a valid case.
+
+use crate::error::{require_poisson, require_positive, Error, Result};
+use crate::layer::Layer;
+use crate::shape::Slider;
+
+/// An isotropic linear elastic material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Elastic {
+    /// Young's modulus E.
+    pub young: f64,
+    /// Poisson's ratio nu, -1 < nu < 0.5.
+    pub poisson: f64,
+}
+
+impl Elastic {
+    /// Plane-strain modulus `E / (1 - nu^2)`.
+    pub fn plane_strain_modulus(&self) -> f64 {
+        self.young / (1.0 - self.poisson * self.poisson)
+    }
+
+    pub(crate) fn validate(&self, section: &str) -> Result<()> {
+        require_positive(&format!("{section}.young"), self.young)?;
+        require_poisson(&format!("{section}.poisson"), self.poisson)
+    }
+}
+
+/// The elastic body under the layer (paper Fig. 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Body {
+    /// A homogeneous half-space (paper eq. 9).
+    Homogeneous(Elastic),
+    /// A coating of thickness `thickness` perfectly bonded to a substrate
+    /// (paper eq. 5 and 10).
+    Coated {
+        /// The coating (E1, nu1).
+        coating: Elastic,
+        /// Coating thickness h1.
+        thickness: f64,
+        /// The substrate half-space (E2, nu2).
+        substrate: Elastic,
+    },
+}
+
+impl Body {
+    /// The half-space under everything (E2, nu2), which sets the stress scale.
+    pub fn substrate(&self) -> Elastic {
+        match *self {
+            Body::Homogeneous(m) => m,
+            Body::Coated { substrate, .. } => substrate,
+        }
+    }
+
+    /// The material at the surface.
+    pub fn surface_material(&self) -> Elastic {
+        match *self {
+            Body::Homogeneous(m) => m,
+            Body::Coated { coating, .. } => coating,
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<()> {
+        match self {
+            Body::Homogeneous(m) => m.validate("substrate"),
+            Body::Coated {
+                coating,
+                thickness,
+                substrate,
+            } => {
+                substrate.validate("substrate")?;
+                coating.validate("coating")?;
+                require_positive("coating.thickness", *thickness)
+            }
+        }
+    }
+}
+
+/// Normal load and sliding velocity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Loading {
+    /// Normal force Q on the slider, > 0.
+    pub normal_load: f64,
+    /// Sliding velocity V, > 0; may be infinite (no time to creep). Needed only
+    /// with a layer.
+    pub velocity: Option<f64>,
+}
+
+/// How the window is chosen.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridSpec {
+    /// Cells along x and y.
+    pub cells: [usize; 2],
+    /// Fixed window half widths along x and y (centred on the origin unless
+    /// `centre` is given); `None` for an automatic window that is enlarged until
+    /// it holds the contact.
+    pub half_width: Option<[f64; 2]>,
+    /// Centre of a fixed window; default the origin.
+    pub centre: Option<[f64; 2]>,
+}
+
+/// Systems of units a case may be written in; they change only labels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Units {
+    /// The paper's dimensionless variables (lengths / R, stresses / E2, times / T).
+    #[default]
+    Dimensionless,
+    /// Pa, m, s, N.
+    Si,
+}
+
+/// Everything that defines one contact problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// Slider shape f(x, y).
+    pub slider: Slider,
+    /// Elastic body.
+    pub body: Body,
+    /// Third-body layer; `None` for direct contact with the body.
+    pub layer: Option<Layer>,
+    /// Load and velocity.
+    pub loading: Loading,
+    /// Grid.
+    pub grid: GridSpec,
+    /// Units, for labels only.
+    pub units: Units,
+}
+
+impl Case {
+    /// Checks every field; the error names the field and what is allowed.
+    pub fn validate(&self) -> Result<()> {
+        self.slider.validate()?;
+        self.body.validate()?;
+        require_positive("loading.normal_load", self.loading.normal_load)?;
+        if let Some(layer) = &self.layer {
+            layer.validate()?;
+            match self.loading.velocity {
+                None => {
+                    return Err(Error::MissingField {
+                        field: "loading.velocity".into(),
+                        why: "a case with a [layer] needs the sliding velocity".into(),
+                    })
+                }
+                Some(v) if v.is_nan() || v <= 0.0 => {
+                    return Err(Error::invalid(
+                        "loading.velocity",
+                        v,
+                        "a number > 0 (inf for no creep)",
+                    ))
+                }
+                _ => {}
+            }
+        } else if let Some(v) = self.loading.velocity {
+            if v.is_nan() || v < 0.0 {
+                return Err(Error::invalid("loading.velocity", v, "a number >= 0"));
+            }
+        }
+        for (k, &n) in self.grid.cells.iter().enumerate() {
+            if n < crate::grid::MIN_CELLS {
+                return Err(Error::invalid(
+                    &format!("grid.cells[{k}]"),
+                    n,
+                    "at least 8 cells along each axis",
+                ));
+            }
+            if n > 1 << 14 {
+                return Err(Error::invalid(
+                    &format!("grid.cells[{k}]"),
+                    n,
+                    "at most 16384 cells along each axis",
+                ));
+            }
+        }
+        if let Some(w) = self.grid.half_width {
+            require_positive("grid.half_width[0]", w[0])?;
+            require_positive("grid.half_width[1]", w[1])?;
+            let hx = 2.0 * w[0] / self.grid.cells[0] as f64;
+            let hy = 2.0 * w[1] / self.grid.cells[1] as f64;
+            if ((hx - hy) / hx).abs() > 1e-9 {
+                return Err(Error::invalid(
+                    "grid.half_width",
+                    format!("[{}, {}]", w[0], w[1]),
+                    "cells must be square: half_width[0] / cells[0] = half_width[1] / cells[1]",
+                ));
+            }
+        }
+        if let Some(c) = self.grid.centre {
+            if !(c[0].is_finite() && c[1].is_finite()) {
+                return Err(Error::invalid(
+                    "grid.centre",
+                    format!("[{}, {}]", c[0], c[1]),
+                    "finite coordinates",
+                ));
+            }
+            if self.grid.half_width.is_none() {
+                return Err(Error::MissingField {
+                    field: "grid.half_width".into(),
+                    why: "grid.centre fixes the window, so its half widths are needed too".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Sliding velocity, infinite when none is given.
+    pub fn velocity(&self) -> f64 {
+        self.loading.velocity.unwrap_or(f64::INFINITY)
+    }
+}

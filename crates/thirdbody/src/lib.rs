@@ -1,0 +1,24 @@
+//! thirdbody: quasi-static sliding contact of a smooth slider over a thin nonlinear
+//! viscoelastic "third-body" layer lying on a homogeneous or coated elastic
+//! half-space (Lubricants 2023, 11, 333).
+//!
+//! Conventions (design.md §1): the frame is fixed to the slider, which moves in +x
+//! over the body, so body material flows through the contact in -x. z points into
+//! the body. Pressure is positive in compression; stresses are positive in tension.
+//! Fields on the grid are row-major with rows along y (`field[j * nx + i]`).
+//! Any consistent units work; the paper's dimensionless variables are R = E2 = T = 1.
+#![warn(missing_docs)]
+
+pub mod body;
+pub mod case;
+pub mod convolution;
+pub mod error;
+pub mod grid;
+pub mod layer;
+pub mod shape;
+
+pub use case::{Body, Case, Elastic, GridSpec, Loading, Units};
+pub use error::{Error, Result};
+pub use grid::Grid;
+pub use layer::{ComplianceLaw, Integration, Layer};
+pub use shape::{HeightMap, Slider};

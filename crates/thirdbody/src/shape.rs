@@ -1,0 +1,243 @@
+//! Slider shapes: the initial separation f(x, y) between the slider and the flat
+//! layer surface, measured from the slider's lowest point (paper eq. 3 with
+//! design.md §1's sign: the contact condition is `w = D - f`), and its slope
+//! df/dx, which gives the hysteresis friction `mu = sum(p df/dx) h^2 / Q`
+//! (the general form of paper eq. 12). Shapes are sampled at cell centres.
+
+use crate::error::{require_positive, Error, Result};
+
+/// A rigid smooth slider.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Slider {
+    /// Paraboloid of radius R: `f = (x^2 + y^2) / (2 R)` (the paper's sphere).
+    Sphere {
+        /// Radius R.
+        radius: f64,
+    },
+    /// Elliptic paraboloid: `f = x^2 / (2 Rx) + y^2 / (2 Ry)`.
+    Ellipsoid {
+        /// Radius of curvature in the xz plane.
+        radius_x: f64,
+        /// Radius of curvature in the yz plane.
+        radius_y: f64,
+    },
+    /// Heights sampled on a grid of square cells, interpolated bilinearly.
+    HeightMap(HeightMap),
+}
+
+/// Heights of the slider surface on a regular grid centred on the origin,
+/// row-major with rows along y. Heights are shifted so that the lowest is zero.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeightMap {
+    /// Samples along x.
+    pub nx: usize,
+    /// Samples along y.
+    pub ny: usize,
+    /// Spacing of the samples (cell size of the map).
+    pub cell_size: f64,
+    /// Heights, `heights[j * nx + i]` at `x = (i + 1/2 - nx/2) h`, `y = (j + 1/2 - ny/2) h`.
+    pub heights: Vec<f64>,
+}
+
+impl HeightMap {
+    /// Half extents of the region where the map can be interpolated (between the
+    /// centres of its outermost samples).
+    pub fn half_extent(&self) -> [f64; 2] {
+        [
+            0.5 * (self.nx as f64 - 1.0) * self.cell_size,
+            0.5 * (self.ny as f64 - 1.0) * self.cell_size,
+        ]
+    }
+
+    fn validate(&self) -> Result<()> {
+        require_positive("slider.cell_size", self.cell_size)?;
+        if self.nx < 2 || self.ny < 2 || self.heights.len() != self.nx * self.ny {
+            return Err(Error::invalid(
+                "slider.file",
+                format!("{} x {} samples", self.ny, self.nx),
+                "a rectangular map of at least 2 x 2 samples",
+            ));
+        }
+        if let Some(k) = self.heights.iter().position(|h| !h.is_finite()) {
+            return Err(Error::invalid(
+                "slider.file",
+                format!("{} at row {}, column {}", self.heights[k], k / self.nx, k % self.nx),
+                "finite heights everywhere (no NaN or inf)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Bilinear interpolation of the height and its x-slope at (x, y); `None` outside.
+    fn sample(&self, x: f64, y: f64) -> Option<(f64, f64)> {
+        let h = self.cell_size;
+        let u = x / h + 0.5 * self.nx as f64 - 0.5;
+        let v = y / h + 0.5 * self.ny as f64 - 0.5;
+        let eps = 1e-9;
+        if u < -eps || v < -eps || u > (self.nx - 1) as f64 + eps || v > (self.ny - 1) as f64 + eps
+        {
+            return None;
+        }
+        let i = (u.floor().max(0.0) as usize).min(self.nx - 2);
+        let j = (v.floor().max(0.0) as usize).min(self.ny - 2);
+        let (s, t) = (u - i as f64, v - j as f64);
+        let at = |i: usize, j: usize| self.heights[j * self.nx + i];
+        let (f00, f10, f01, f11) = (at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1));
+        let f = (1.0 - t) * ((1.0 - s) * f00 + s * f10) + t * ((1.0 - s) * f01 + s * f11);
+        let dfdx = ((1.0 - t) * (f10 - f00) + t * (f11 - f01)) / h;
+        Some((f, dfdx))
+    }
+}
+
+impl Slider {
+    pub(crate) fn validate(&self) -> Result<()> {
+        match self {
+            Slider::Sphere { radius } => require_positive("slider.radius", *radius),
+            Slider::Ellipsoid { radius_x, radius_y } => {
+                require_positive("slider.radius_x", *radius_x)?;
+                require_positive("slider.radius_y", *radius_y)
+            }
+            Slider::HeightMap(m) => m.validate(),
+        }
+    }
+
+    /// Effective radius used by the automatic window and Hertz estimates:
+    /// `sqrt(Rx Ry)` for an ellipsoid, the curvature at the lowest point for a map.
+    pub fn equivalent_radius(&self) -> f64 {
+        match self {
+            Slider::Sphere { radius } => *radius,
+            Slider::Ellipsoid { radius_x, radius_y } => (radius_x * radius_y).sqrt(),
+            Slider::HeightMap(m) => {
+                // Curvature from the second differences around the lowest sample.
+                let k = (0..m.heights.len())
+                    .min_by(|&a, &b| m.heights[a].total_cmp(&m.heights[b]))
+                    .unwrap_or(0);
+                let (i, j) = (k % m.nx, k / m.nx);
+                let at = |i: usize, j: usize| m.heights[j * m.nx + i];
+                let h = m.cell_size;
+                let mut curv: f64 = 0.0;
+                if i > 0 && i + 1 < m.nx {
+                    curv = curv.max((at(i + 1, j) - 2.0 * at(i, j) + at(i - 1, j)) / (h * h));
+                }
+                if j > 0 && j + 1 < m.ny {
+                    curv = curv.max((at(i, j + 1) - 2.0 * at(i, j) + at(i, j - 1)) / (h * h));
+                }
+                if curv > 0.0 {
+                    1.0 / curv
+                } else {
+                    // A flat bottom: the map's own size is the only length.
+                    m.cell_size * (m.nx.max(m.ny) as f64)
+                }
+            }
+        }
+    }
+
+    /// Fills `f` and `dfdx` at the centres of `grid`'s cells.
+    ///
+    /// Fails if the window reaches outside a height map.
+    pub fn sample(&self, grid: &crate::grid::Grid, f: &mut [f64], dfdx: &mut [f64]) -> Result<()> {
+        let min_height = match self {
+            Slider::HeightMap(m) => m.heights.iter().copied().fold(f64::INFINITY, f64::min),
+            _ => 0.0,
+        };
+        for j in 0..grid.ny {
+            let y = grid.y(j);
+            for i in 0..grid.nx {
+                let x = grid.x(i);
+                let k = grid.index(i, j);
+                let (fv, dv) = match self {
+                    Slider::Sphere { radius } => ((x * x + y * y) / (2.0 * radius), x / radius),
+                    Slider::Ellipsoid { radius_x, radius_y } => (
+                        x * x / (2.0 * radius_x) + y * y / (2.0 * radius_y),
+                        x / radius_x,
+                    ),
+                    Slider::HeightMap(m) => match m.sample(x, y) {
+                        Some((fv, dv)) => (fv - min_height, dv),
+                        None => {
+                            let [ex, ey] = m.half_extent();
+                            let [wx, wy] = grid.half_widths();
+                            let c = grid.centre();
+                            return Err(Error::invalid(
+                                "grid",
+                                format!(
+                                    "a window of half widths {wx:.4e} x {wy:.4e} centred at \
+                                     ({:.4e}, {:.4e})",
+                                    c[0], c[1]
+                                ),
+                                &format!(
+                                    "a window inside the height map (half extents {ex:.4e} x \
+                                     {ey:.4e}); give a larger map or a smaller grid.half_width"
+                                ),
+                            ));
+                        }
+                    },
+                };
+                f[k] = fv;
+                dfdx[k] = dv;
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Grid;
+
+    #[test]
+    fn height_map_of_a_paraboloid_reproduces_the_sphere() {
+        // A map sampled from the sphere's own formula must interpolate back to it
+        // within the bilinear error h^2 / (8 R) per axis.
+        let (n, h, r) = (101, 0.02, 1.0);
+        let mut heights = vec![0.0; n * n];
+        for j in 0..n {
+            for i in 0..n {
+                let x = (i as f64 + 0.5 - n as f64 / 2.0) * h;
+                let y = (j as f64 + 0.5 - n as f64 / 2.0) * h;
+                heights[j * n + i] = (x * x + y * y) / (2.0 * r) + 3.0;
+            }
+        }
+        let map = Slider::HeightMap(HeightMap {
+            nx: n,
+            ny: n,
+            cell_size: h,
+            heights,
+        });
+        let sphere = Slider::Sphere { radius: r };
+        let g = Grid::centred(16, 16, 0.05, [0.1, -0.05]).unwrap();
+        let (mut f1, mut d1, mut f2, mut d2) = (vec![0.0; 256], vec![0.0; 256], vec![0.0; 256], vec![0.0; 256]);
+        map.sample(&g, &mut f1, &mut d1).unwrap();
+        sphere.sample(&g, &mut f2, &mut d2).unwrap();
+        for k in 0..256 {
+            assert!((f1[k] - f2[k]).abs() < h * h / (4.0 * r) + 1e-12, "{k}");
+            assert!((d1[k] - d2[k]).abs() < h / r, "{k}");
+        }
+        assert!((map.equivalent_radius() - r).abs() < 1e-9);
+    }
+
+    #[test]
+    fn nan_in_a_height_map_is_named() {
+        let map = Slider::HeightMap(HeightMap {
+            nx: 2,
+            ny: 2,
+            cell_size: 1.0,
+            heights: vec![0.0, f64::NAN, 0.0, 0.0],
+        });
+        let e = map.validate().unwrap_err().to_string();
+        assert!(e.contains("slider.file") && e.contains("NaN") && e.contains("row 0, column 1"), "{e}");
+    }
+
+    #[test]
+    fn window_outside_the_map_is_an_error() {
+        let map = Slider::HeightMap(HeightMap {
+            nx: 4,
+            ny: 4,
+            cell_size: 1.0,
+            heights: vec![0.0; 16],
+        });
+        let g = Grid::centred(8, 8, 1.0, [0.0, 0.0]).unwrap();
+        let e = map.sample(&g, &mut [0.0; 64], &mut [0.0; 64]).unwrap_err();
+        assert!(e.to_string().contains("inside the height map"), "{e}");
+    }
+}
