@@ -140,16 +140,31 @@ impl ConvolutionPlan {
 
     /// The spectrum of a kernel given as a function of the cell offset
     /// `(di, dj)` in cells, `-nx < di < nx`, `-ny < dj < ny`.
-    pub fn kernel_spectrum(self: &Arc<Self>, kernel: impl Fn(i64, i64) -> f64 + Sync) -> KernelSpectrum {
+    pub fn kernel_spectrum(
+        self: &Arc<Self>,
+        kernel: impl Fn(i64, i64) -> f64 + Sync,
+    ) -> KernelSpectrum {
         let (nx, ny) = (self.nx, self.ny);
         let (px, py) = (2 * nx, 2 * ny);
         // Kernel on the wrap-around grid; offset nx (or ny) is never used by a pair
         // of cells and stays zero.
         let mut wrapped = vec![0.0; px * py];
         wrapped.par_chunks_mut(px).enumerate().for_each(|(r, row)| {
-            let dj = if r < ny { r as i64 } else if r > ny { r as i64 - py as i64 } else { return };
+            let dj = if r < ny {
+                r as i64
+            } else if r > ny {
+                r as i64 - py as i64
+            } else {
+                return;
+            };
             for (c, v) in row.iter_mut().enumerate() {
-                let di = if c < nx { c as i64 } else if c > nx { c as i64 - px as i64 } else { continue };
+                let di = if c < nx {
+                    c as i64
+                } else if c > nx {
+                    c as i64 - px as i64
+                } else {
+                    continue;
+                };
                 *v = kernel(di, dj);
             }
         });
@@ -181,7 +196,11 @@ impl Convolver {
     /// Forward-transforms a field once, for several [`Self::apply_to_transformed`].
     pub fn transform_field(&mut self, field: &[f64]) {
         let plan = Arc::clone(&self.plan);
-        assert_eq!(field.len(), plan.nx * plan.ny, "field size does not match the plan");
+        assert_eq!(
+            field.len(),
+            plan.nx * plan.ny,
+            "field size does not match the plan"
+        );
         self.row_stage_forward(field, plan.nx);
         self.transpose_rows_into_columns();
         self.column_stage(true);
@@ -191,8 +210,15 @@ impl Convolver {
     /// `out = kernel (*) field` for the field last given to [`Self::transform_field`].
     pub fn apply_to_transformed(&mut self, kernel: &KernelSpectrum, out: &mut [f64]) {
         let plan = Arc::clone(&self.plan);
-        assert!(kernel.nx == plan.nx && kernel.ny == plan.ny, "kernel of another grid");
-        assert_eq!(out.len(), plan.nx * plan.ny, "output size does not match the plan");
+        assert!(
+            kernel.nx == plan.nx && kernel.ny == plan.ny,
+            "kernel of another grid"
+        );
+        assert_eq!(
+            out.len(),
+            plan.nx * plan.ny,
+            "output size does not match the plan"
+        );
         self.columns
             .iter_mut()
             .zip(self.field_spectrum.iter().zip(&kernel.values))
@@ -210,7 +236,10 @@ impl Convolver {
         let half = plan.nx + 1;
         let mut spectrum_rows = vec![Complex::default(); half * rows];
         let lane = &mut self.lanes[0];
-        for (src, dst) in padded.chunks_exact(width).zip(spectrum_rows.chunks_exact_mut(half)) {
+        for (src, dst) in padded
+            .chunks_exact(width)
+            .zip(spectrum_rows.chunks_exact_mut(half))
+        {
             lane.real.copy_from_slice(src);
             plan.row_forward
                 .process_with_scratch(&mut lane.real, dst, &mut lane.scratch)
@@ -219,7 +248,11 @@ impl Convolver {
         let py = 2 * plan.ny;
         for c in 0..half {
             for r in 0..py {
-                self.columns[c * py + r] = if r < rows { spectrum_rows[r * half + c] } else { Complex::default() };
+                self.columns[c * py + r] = if r < rows {
+                    spectrum_rows[r * half + c]
+                } else {
+                    Complex::default()
+                };
             }
         }
         self.column_stage(true);
@@ -256,7 +289,10 @@ impl Convolver {
         let (nx, half) = (plan.nx, plan.nx + 1);
         let per_lane = plan.ny.div_ceil(self.lanes.len());
         let process = |src_rows: &mut [Complex<f64>], dst_rows: &mut [f64], lane: &mut Lane| {
-            for (src, dst) in src_rows.chunks_exact_mut(half).zip(dst_rows.chunks_exact_mut(nx)) {
+            for (src, dst) in src_rows
+                .chunks_exact_mut(half)
+                .zip(dst_rows.chunks_exact_mut(nx))
+            {
                 // The first and last bins of a real signal's spectrum are real; drop the
                 // rounding residue so realfft accepts them.
                 src[0].im = 0.0;
@@ -281,7 +317,11 @@ impl Convolver {
     fn column_stage(&mut self, forward: bool) {
         let plan = &self.plan;
         let py = 2 * plan.ny;
-        let fft = if forward { &plan.column_forward } else { &plan.column_inverse };
+        let fft = if forward {
+            &plan.column_forward
+        } else {
+            &plan.column_inverse
+        };
         let columns = plan.nx + 1;
         let per_lane = columns.div_ceil(self.lanes.len());
         let process = |cols: &mut [Complex<f64>], lane: &mut Lane| {
@@ -365,7 +405,10 @@ mod tests {
                 direct_convolution(nx, ny, lopsided, &field, &mut slow);
                 let scale = slow.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 for k in 0..nx * ny {
-                    assert!((fast[k] - slow[k]).abs() < 1e-12 * scale, "{nx}x{ny} {par:?} {k}");
+                    assert!(
+                        (fast[k] - slow[k]).abs() < 1e-12 * scale,
+                        "{nx}x{ny} {par:?} {k}"
+                    );
                 }
                 assert_eq!(spectrum.self_coefficient(), lopsided(0, 0));
             }

@@ -33,7 +33,11 @@ impl Grid {
             }
         }
         if !(cell.is_finite() && cell > 0.0) {
-            return Err(Error::invalid("grid cell size", cell, "a finite number > 0"));
+            return Err(Error::invalid(
+                "grid cell size",
+                cell,
+                "a finite number > 0",
+            ));
         }
         Ok(Grid {
             nx,

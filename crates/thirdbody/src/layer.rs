@@ -121,7 +121,11 @@ impl Table {
         let last = n - 1;
         if p >= self.pressures[last] {
             let c = self.compliances[last];
-            return (c, 0.0, self.integrals[last] + c * (p - self.pressures[last]));
+            return (
+                c,
+                0.0,
+                self.integrals[last] + c * (p - self.pressures[last]),
+            );
         }
         let k = self.pressures.partition_point(|&q| q <= p).max(1) - 1;
         let (x0, x1) = (self.pressures[k], self.pressures[k + 1]);
@@ -413,7 +417,11 @@ impl LayerJacobian {
     /// `out = J dp`.
     pub fn apply(&self, dp: &[f64], out: &mut [f64]) {
         let nx = self.nx;
-        for (r, (drow, orow)) in dp.chunks_exact(nx).zip(out.chunks_exact_mut(nx)).enumerate() {
+        for (r, (drow, orow)) in dp
+            .chunks_exact(nx)
+            .zip(out.chunks_exact_mut(nx))
+            .enumerate()
+        {
             let diag = &self.diagonal[r * nx..(r + 1) * nx];
             let slope = &self.creep_slope[r * nx..(r + 1) * nx];
             let mut upstream = 0.0;
@@ -479,7 +487,10 @@ mod tests {
         for &p in &[1e-6, 0.001, 0.005, 0.03, 0.2] {
             let q = simpson(|s| l.law_at(s).compliance, 0.0, p, 20_000);
             let g = l.law_at(p).integral;
-            assert!((g - q).abs() <= 1e-10 * q.abs().max(1e-12), "p={p}: {g} vs {q}");
+            assert!(
+                (g - q).abs() <= 1e-10 * q.abs().max(1e-12),
+                "p={p}: {g} vs {q}"
+            );
         }
         // p / p0 = 1e6: G = C0 ((1 + d) p - 2 d p0 (p/p0 - ln 2)) to rounding.
         let p = 0.005 * 1e6;
@@ -588,7 +599,11 @@ mod tests {
             op.maxwell_row_sweep(&minus, &mut wm);
             for k in 0..12 {
                 let fd = (wp[k] - wm[k]) / (2.0 * e);
-                assert!((jd[k] - fd).abs() < 1e-6 * fd.abs().max(1e-3), "{k}: {} {fd}", jd[k]);
+                assert!(
+                    (jd[k] - fd).abs() < 1e-6 * fd.abs().max(1e-3),
+                    "{k}: {} {fd}",
+                    jd[k]
+                );
             }
             // The restricted triangular solve inverts J on all-active cells.
             let active = vec![true; 12];

@@ -11,14 +11,19 @@
 
 pub mod body;
 pub mod case;
+pub mod contact;
 pub mod convolution;
 pub mod error;
 pub mod grid;
 pub mod layer;
 pub mod shape;
+pub mod solution;
 
 pub use case::{Body, Case, Elastic, GridSpec, Loading, Units};
+pub use contact::{solve, solve_observed, Progress, SolverParams};
+pub use convolution::Parallelism;
 pub use error::{Error, Result};
 pub use grid::Grid;
 pub use layer::{ComplianceLaw, Integration, Layer};
 pub use shape::{HeightMap, Slider};
+pub use solution::{Method, Solution, SolveInfo, Summary};

@@ -61,7 +61,12 @@ impl HeightMap {
         if let Some(k) = self.heights.iter().position(|h| !h.is_finite()) {
             return Err(Error::invalid(
                 "slider.file",
-                format!("{} at row {}, column {}", self.heights[k], k / self.nx, k % self.nx),
+                format!(
+                    "{} at row {}, column {}",
+                    self.heights[k],
+                    k / self.nx,
+                    k % self.nx
+                ),
                 "finite heights everywhere (no NaN or inf)",
             ));
         }
@@ -206,7 +211,12 @@ mod tests {
         });
         let sphere = Slider::Sphere { radius: r };
         let g = Grid::centred(16, 16, 0.05, [0.1, -0.05]).unwrap();
-        let (mut f1, mut d1, mut f2, mut d2) = (vec![0.0; 256], vec![0.0; 256], vec![0.0; 256], vec![0.0; 256]);
+        let (mut f1, mut d1, mut f2, mut d2) = (
+            vec![0.0; 256],
+            vec![0.0; 256],
+            vec![0.0; 256],
+            vec![0.0; 256],
+        );
         map.sample(&g, &mut f1, &mut d1).unwrap();
         sphere.sample(&g, &mut f2, &mut d2).unwrap();
         for k in 0..256 {
@@ -225,7 +235,10 @@ mod tests {
             heights: vec![0.0, f64::NAN, 0.0, 0.0],
         });
         let e = map.validate().unwrap_err().to_string();
-        assert!(e.contains("slider.file") && e.contains("NaN") && e.contains("row 0, column 1"), "{e}");
+        assert!(
+            e.contains("slider.file") && e.contains("NaN") && e.contains("row 0, column 1"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -64,7 +64,10 @@ mod tests {
         let a = 0.5;
         let corner = love_rectangle_displacement(STEEL, a, a, a, a);
         let big_centre = love_rectangle_displacement(STEEL, 2.0 * a, 2.0 * a, 0.0, 0.0);
-        assert!((corner - big_centre / 4.0).abs() < 1e-14 * corner, "{corner} {big_centre}");
+        assert!(
+            (corner - big_centre / 4.0).abs() < 1e-14 * corner,
+            "{corner} {big_centre}"
+        );
         assert!(corner.is_finite());
     }
 
@@ -76,7 +79,10 @@ mod tests {
             let w = love_rectangle_displacement(STEEL, a, b, r * 0.6, r * 0.8);
             let point = (1.0 - 0.09) * 4.0 * a * b / (PI * 2.0 * r);
             // Next term of the multipole expansion is O((a / r)^2).
-            assert!(((w - point) / point).abs() < 0.2 / (r * r), "r = {r}: {w} vs {point}");
+            assert!(
+                ((w - point) / point).abs() < 0.2 / (r * r),
+                "r = {r}: {w} vs {point}"
+            );
         }
     }
 

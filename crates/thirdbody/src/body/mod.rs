@@ -19,9 +19,9 @@ pub fn surface_kernel_spectrum(
     plan: &Arc<ConvolutionPlan>,
 ) -> Result<KernelSpectrum> {
     match *body {
-        Body::Homogeneous(material) => Ok(plan.kernel_spectrum(
-            homogeneous::homogeneous_surface_kernel(material, grid.cell),
-        )),
+        Body::Homogeneous(material) => {
+            Ok(plan.kernel_spectrum(homogeneous::homogeneous_surface_kernel(material, grid.cell)))
+        }
         Body::Coated { .. } => Err(crate::error::Error::invalid(
             "coating",
             "a coated body",

@@ -1,0 +1,165 @@
+//! A solved contact and the quantities users read off it: contact area and
+//! extents, maximum pressure, the moment `M = sum(x p) h^2` and the hysteresis
+//! friction coefficient `mu = sum(p df/dx) h^2 / Q` (the general form of paper
+//! eq. 12; for the paraboloid sphere it equals `M / (R Q)`), and the tangential
+//! force `Q_T = mu Q` that opposes the sliding. `mu > 0` when the pressure is
+//! shifted to the leading edge (+x).
+
+use serde::Serialize;
+
+use crate::grid::Grid;
+
+/// Which algorithm produced a solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Polonsky–Keer conjugate gradients (symmetric operator: no creep).
+    PolonskyKeer,
+    /// Semi-smooth Newton on the complementarity conditions with GMRES.
+    SemismoothNewton,
+    /// Dense direct solve of the paper's system (6) with an active-set loop.
+    DenseReference,
+}
+
+/// How the solve went.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SolveInfo {
+    /// Algorithm used.
+    pub method: Method,
+    /// Outer iterations (CG steps or Newton steps) of the final window.
+    pub iterations: usize,
+    /// Inner Krylov iterations in total (0 for CG).
+    pub linear_iterations: usize,
+    /// Final relative complementarity residual `||min(p, g / c)|| / ||p||`.
+    pub residual: f64,
+    /// Windows tried (the automatic window may enlarge or refit).
+    pub windows: usize,
+    /// Residual after each outer iteration of the final window.
+    pub history: Vec<f64>,
+}
+
+/// A converged contact.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// The window and cells.
+    pub grid: Grid,
+    /// Contact pressure per cell, >= 0.
+    pub pressure: Vec<f64>,
+    /// Normal displacement of the elastic body's surface.
+    pub body_displacement: Vec<f64>,
+    /// Normal displacement of the layer `w3` (`None` without a layer).
+    pub layer_displacement: Option<Vec<f64>>,
+    /// Layer compliance `C[p]` per cell (paper Fig. 3b; `None` without a layer).
+    pub compliance: Option<Vec<f64>>,
+    /// Gap between slider and deformed surface: `w_body + w_layer + f - D`
+    /// (zero in contact to solver precision, >= 0 outside).
+    pub gap: Vec<f64>,
+    /// Slider shape f at cell centres.
+    pub shape: Vec<f64>,
+    /// Slope df/dx at cell centres.
+    pub shape_slope: Vec<f64>,
+    /// Approach (penetration) D of the slider.
+    pub approach: f64,
+    /// Normal load Q.
+    pub normal_load: f64,
+    /// Solver report.
+    pub info: SolveInfo,
+}
+
+/// The scalar results of a solution, in the case's units.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// Q.
+    pub normal_load: f64,
+    /// D.
+    pub penetration: f64,
+    /// Largest cell pressure.
+    pub max_pressure: f64,
+    /// x of the cell with the largest pressure.
+    pub max_pressure_x: f64,
+    /// y of the cell with the largest pressure.
+    pub max_pressure_y: f64,
+    /// Number of loaded cells times the cell area.
+    pub contact_area: f64,
+    /// Smallest x covered by a loaded cell (cell edge).
+    pub contact_x_min: f64,
+    /// Largest x covered by a loaded cell (cell edge).
+    pub contact_x_max: f64,
+    /// Smallest y covered by a loaded cell (cell edge).
+    pub contact_y_min: f64,
+    /// Largest y covered by a loaded cell (cell edge).
+    pub contact_y_max: f64,
+    /// `M = sum(x p) h^2` about the slider's lowest point (paper eq. 12).
+    pub moment: f64,
+    /// `mu = sum(p df/dx) h^2 / Q`.
+    pub friction_coefficient: f64,
+    /// `Q_T = mu Q`, the force that opposes the sliding.
+    pub tangential_force: f64,
+    /// Outer iterations.
+    pub iterations: usize,
+    /// Final relative residual.
+    pub residual: f64,
+    /// Cells along x.
+    pub nx: usize,
+    /// Cells along y.
+    pub ny: usize,
+    /// Cell side h.
+    pub cell_size: f64,
+}
+
+impl Solution {
+    /// The scalar results.
+    pub fn summary(&self) -> Summary {
+        let g = &self.grid;
+        let area = g.cell_area();
+        let (mut pmax, mut kmax) = (0.0, 0);
+        let (mut xmin, mut xmax, mut ymin, mut ymax) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        let (mut count, mut moment, mut traction) = (0usize, 0.0, 0.0);
+        for j in 0..g.ny {
+            for i in 0..g.nx {
+                let k = g.index(i, j);
+                let p = self.pressure[k];
+                if p > pmax {
+                    pmax = p;
+                    kmax = k;
+                }
+                if p > 0.0 {
+                    count += 1;
+                    let (x, y) = (g.x(i), g.y(j));
+                    xmin = xmin.min(x - 0.5 * g.cell);
+                    xmax = xmax.max(x + 0.5 * g.cell);
+                    ymin = ymin.min(y - 0.5 * g.cell);
+                    ymax = ymax.max(y + 0.5 * g.cell);
+                    moment += x * p * area;
+                    traction += self.shape_slope[k] * p * area;
+                }
+            }
+        }
+        let mu = traction / self.normal_load;
+        Summary {
+            normal_load: self.normal_load,
+            penetration: self.approach,
+            max_pressure: pmax,
+            max_pressure_x: g.x(kmax % g.nx),
+            max_pressure_y: g.y(kmax / g.nx),
+            contact_area: count as f64 * area,
+            contact_x_min: xmin,
+            contact_x_max: xmax,
+            contact_y_min: ymin,
+            contact_y_max: ymax,
+            moment,
+            friction_coefficient: mu,
+            tangential_force: mu * self.normal_load,
+            iterations: self.info.iterations,
+            residual: self.info.residual,
+            nx: g.nx,
+            ny: g.ny,
+            cell_size: g.cell,
+        }
+    }
+}
