@@ -53,7 +53,43 @@ pub(crate) struct MapFigure<'a> {
     pub lines: Vec<Polyline>,
     /// A boundary drawn bold with a halo, and its legend entry.
     pub outline: Option<(Vec<Polyline>, &'a str)>,
+    /// Corner of the legend (of the outline).
+    pub legend_corner: Corner,
     pub marker: Option<Marker>,
+}
+
+/// A corner of the plotting area.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Corner {
+    UpperRight,
+    UpperLeft,
+    LowerRight,
+    LowerLeft,
+}
+
+impl Corner {
+    /// The corner whose box (a third of the width, a sixth of the height) holds the
+    /// fewest cells where `inside` is true; ties go in the order upper right, upper left,
+    /// lower right, lower left.
+    pub fn emptiest(nx: usize, ny: usize, inside: impl Fn(usize) -> bool) -> Self {
+        let (bw, bh) = (nx.div_ceil(3), ny.div_ceil(6));
+        let count = |cols: std::ops::Range<usize>, rows: std::ops::Range<usize>| {
+            rows.flat_map(|j| cols.clone().map(move |i| j * nx + i))
+                .filter(|&k| inside(k))
+                .count()
+        };
+        // Rows run upwards: the upper corners hold the last rows.
+        let candidates = [
+            (Corner::UpperRight, count(nx - bw..nx, ny - bh..ny)),
+            (Corner::UpperLeft, count(0..bw, ny - bh..ny)),
+            (Corner::LowerRight, count(nx - bw..nx, 0..bh)),
+            (Corner::LowerLeft, count(0..bw, 0..bh)),
+        ];
+        candidates
+            .iter()
+            .min_by_key(|c| c.1)
+            .map_or(Corner::UpperRight, |c| c.0)
+    }
 }
 
 /// Pixel size of the plotting area and the data ranges shown in it.
@@ -217,7 +253,12 @@ impl Figure for MapFigure<'_> {
                 });
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
+                .position(match self.legend_corner {
+                    Corner::UpperRight => SeriesLabelPosition::UpperRight,
+                    Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+                    Corner::LowerRight => SeriesLabelPosition::LowerRight,
+                    Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+                })
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
                 .label_font(text(TICK_SIZE))

@@ -29,7 +29,7 @@ use anyhow::{bail, Result};
 
 use colour::{min_max, ColourScale};
 use contours::{contour_lines, Axis};
-use map::{MapFigure, Marker};
+use map::{Corner, MapFigure, Marker};
 
 /// One curve of a line plot.
 #[derive(Debug, Clone, PartialEq)]
@@ -113,6 +113,10 @@ pub fn field_map(
     check_finite("field map field", field)?;
     let cols = Axis::uniform(nx, grid.x0, grid.cell);
     let rows = Axis::uniform(ny, grid.y0, grid.cell);
+    let legend_corner = match outline {
+        Some(o) if o.len() == nx * ny => Corner::emptiest(nx, ny, |k| o[k] > 0.0),
+        _ => Corner::UpperRight,
+    };
     let outline = match outline {
         Some(o) => {
             check_len("field map outline", o.len(), nx * ny, "grid nx * ny")?;
@@ -146,6 +150,7 @@ pub fn field_map(
         equal_aspect: true,
         lines: Vec::new(),
         outline,
+        legend_corner,
         marker: None,
     };
     output::write_figure(path, &figure)
@@ -238,7 +243,7 @@ pub fn section_map(
         .iter()
         .enumerate()
         .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-        .expect("field has nx * nz >= 4 values");
+        .ok_or_else(|| anyhow::anyhow!("section field is empty"))?;
     let (x_max, z_max) = (xs[k_max % nx], zs[k_max / nx]);
     let marker = (extreme != 0.0).then(|| Marker {
         at: (x_max, -z_max),
@@ -259,6 +264,7 @@ pub fn section_map(
         equal_aspect: (0.2..=5.0).contains(&ratio),
         lines,
         outline: None,
+        legend_corner: Corner::UpperRight,
         marker,
     };
     output::write_figure(path, &figure)

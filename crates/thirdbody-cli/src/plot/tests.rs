@@ -10,6 +10,8 @@ use super::{field_map, line_plot, section_map, Series};
 
 const VIRIDIS_LOW: [u8; 3] = [68, 1, 84];
 const VIRIDIS_HIGH: [u8; 3] = [254, 232, 37];
+/// Colour of the legend frame of line plots in SVG (no other element uses it).
+const LEGEND_FRAME: &str = "#A0A0A0";
 
 /// Width and height from the IHDR chunk, after checking the PNG signature.
 fn png_size(path: &Path) -> (u32, u32) {
@@ -129,6 +131,20 @@ fn field_map_keeps_equal_aspect_and_places_the_disc() {
     assert!((cx / ww as f64 - 0.625).abs() < 0.01, "cx = {cx}");
     assert!((cy / wh as f64 - 0.5).abs() < 0.01, "cy = {cy}");
     assert_eq!(listing(dir.path()), vec!["disc.png"]);
+}
+
+#[test]
+fn legend_goes_to_the_emptiest_corner() {
+    use super::map::Corner;
+    // 12 x 12 cells; rows run upwards, so row 11 is the top.
+    let upper_right_full = |k: usize| k % 12 >= 8 && k / 12 >= 10;
+    assert_eq!(
+        Corner::emptiest(12, 12, upper_right_full),
+        Corner::UpperLeft
+    );
+    let upper_full = |k: usize| k / 12 >= 10;
+    assert_eq!(Corner::emptiest(12, 12, upper_full), Corner::LowerRight);
+    assert_eq!(Corner::emptiest(12, 12, |_| false), Corner::UpperRight);
 }
 
 #[test]
@@ -325,10 +341,33 @@ fn line_plot_renders_linear_and_log_axes() {
         y: vec![1.0, 3.0, 2.0],
         dashed: false,
     };
-    line_plot(&path, &[s], "Profile", "x'", "p'", false).unwrap();
+    line_plot(
+        &path,
+        std::slice::from_ref(&s),
+        "Profile",
+        "x'",
+        "p'",
+        false,
+    )
+    .unwrap();
     let img = decode(&path);
     assert!(distinct_colours(&img) > 10);
-    assert_eq!(listing(dir.path()), vec!["log.png", "single.PNG"]);
+    assert!(img.pixels().any(|p| p.0 == [31, 119, 180]));
+    // The legend frame is grey 160 (#A0A0A0): present with labels, absent without.
+    let svg = dir.path().join("single.svg");
+    line_plot(&svg, std::slice::from_ref(&s), "Profile", "x'", "p'", false).unwrap();
+    assert!(!std::fs::read_to_string(&svg)
+        .unwrap()
+        .contains(LEGEND_FRAME));
+    let svg2 = dir.path().join("two.svg");
+    line_plot(&svg2, &two_series(), "Sweep", "V'", "mu", false).unwrap();
+    assert!(std::fs::read_to_string(&svg2)
+        .unwrap()
+        .contains(LEGEND_FRAME));
+    assert_eq!(
+        listing(dir.path()),
+        vec!["log.png", "single.PNG", "single.svg", "two.svg"]
+    );
 }
 
 #[test]
@@ -571,6 +610,27 @@ fn write_samples() {
             6,
         )
         .unwrap();
+        let big = Grid::centred(1024, 512, 1.0 / 256.0, [0.0, 0.0]).unwrap();
+        let field: Vec<f64> = (0..big.len())
+            .map(|k| {
+                let (x, y) = (big.x(k % big.nx), big.y(k / big.nx));
+                (1.0 - (x - 0.3).powi(2) - y * y).max(0.0).sqrt()
+            })
+            .collect();
+        let start = std::time::Instant::now();
+        let path = dir.join(format!("big.{ext}"));
+        field_map(
+            &path,
+            &big,
+            &field,
+            "1024 x 512",
+            "x",
+            "y",
+            "p",
+            Some(&field),
+        )
+        .unwrap();
+        eprintln!("1024 x 512 field map to {ext}: {:?}", start.elapsed());
         line_plot(
             &dir.join(format!("lines.{ext}")),
             &two_series(),
