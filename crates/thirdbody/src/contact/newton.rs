@@ -23,6 +23,8 @@ const RESTART: usize = 40;
 /// Most GMRES products per Newton step.
 const MAX_LINEAR_ITERATIONS: usize = 400;
 
+/// Newton steps between checks for a folding row relation.
+const FOLD_CHECK_EVERY: usize = 20;
 /// Smallest damping factor of a Newton step.
 const MIN_STEP: f64 = 1.0 / 64.0;
 
@@ -96,7 +98,9 @@ pub(crate) fn semismooth_newton(
     let mut last_residual = f64::INFINITY;
 
     let mut trial = vec![0.0; n];
-    let mut merit = evaluate(op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g);
+    let mut merit = evaluate(
+        op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g,
+    );
     for iteration in 1..=params.max_iterations {
         for k in 0..n {
             jp[k] = wb[k] + wl[k];
@@ -117,6 +121,19 @@ pub(crate) fn semismooth_newton(
             });
         }
         last_residual = residual;
+        // A folding row relation is a property of the discrete model, not of the
+        // iteration: stop early and say so rather than iterate to the limit.
+        if iteration % FOLD_CHECK_EVERY == 0 && residual > 1e-3 {
+            if let Some(hint) = folding_diagnosis(layer, p) {
+                return Err(Error::NoConvergence {
+                    iterations: iteration,
+                    residual,
+                    tolerance: params.tolerance,
+                    history,
+                    hint,
+                });
+            }
+        }
 
         // Contact set of this step.
         let mut indices = Vec::with_capacity(n);
@@ -225,6 +242,32 @@ pub(crate) fn semismooth_newton(
         residual: last_residual,
         tolerance: params.tolerance,
         history,
-        hint: "raise solver.max_iterations or solver.tolerance, or refine the grid".into(),
+        hint: folding_diagnosis(layer, p).unwrap_or_else(|| {
+            "raise solver.max_iterations or solver.tolerance, or refine the grid".into()
+        }),
+    })
+}
+
+/// Explains a failure caused by the model rather than the solver: where a cell's
+/// own layer response `d(instantaneous)/dp + (h / 2VT) d(C p)/dp` is not positive, the
+/// discrete row relation folds (a larger pressure gives a smaller displacement) and
+/// the contact problem has no unique solution. This happens when `C[p] p` decreases
+/// with p (the sigmoid law with delta near 1 at p well above p0) and the cells are
+/// long against the creep length V T.
+fn folding_diagnosis(layer: &LayerOperator, p: &[f64]) -> Option<String> {
+    let jac = layer.linearise(p);
+    let worst = (0..p.len())
+        .filter(|&k| p[k] > 0.0 && jac.diagonal[k] <= 0.0)
+        .map(|k| p[k])
+        .fold(f64::INFINITY, f64::min);
+    worst.is_finite().then(|| {
+        format!(
+            "the layer's row relation folds at pressures above about {worst:.3e} (its \
+             displacement falls as the pressure rises, so the discrete problem has no \
+             unique solution); this happens when C[p] p decreases with p (delta near 1, \
+             p >> p0) and the cells are long against V T (h / (V T) = {:.3e} here): use \
+             a smaller delta, a larger p0, or cells shorter than V T",
+            layer.creep_per_cell()
+        )
     })
 }
