@@ -30,8 +30,8 @@
 //! from `x = R C0 (p / L - p')` and `p(x_t) = p(b) = 0`:
 //! `int x p dx = (R C0 / L) int p^2 dx`, which is positive (so mu > 0) and is
 //! integrated by Gauss–Legendre without the cancellation of the closed form of
-//! `int x p` when b << L. The row's maximum, where `p' = 0`, is at `x_m = b - L ln(1 + b / L)` with
-//! `p(x_m) = L x_m / (R C0)`.
+//! `int x p` when b << L. The row's maximum, where `p' = 0`, is at
+//! `x_m = b - L ln(1 + b / L)` with `p(x_m) = L x_m / (R C0)`.
 //!
 //! **Exact integration, any law.** `w3 = G(p) + (1/L) int_x^inf C[p] p ds` with
 //! `G' = C`; differentiating the contact condition along x gives
@@ -40,7 +40,9 @@
 //! `min(b, L) / STEPS_PER_LENGTH`) together with the row load and moment, until p
 //! returns to 0; the last step is shortened to land on `p = 0` exactly (root of the
 //! RK4 step in its length). The row maximum is refined on the step where `p'`
-//! changes sign with the cubic Hermite interpolant of `(p, p')`.
+//! changes sign with the cubic Hermite interpolant of `(p, p')`. Where p = 0 and
+//! x > 0 the ODE gives `dp/d(-x) = x / (R C0) > 0`, so p cannot return to 0 ahead
+//! of x = 0: `x_t <= 0` and, as for the linear law, the gap stays open behind.
 //!
 //! **Secant integration, any law.** `w3 = q + (1/L) int_x^inf q ds` with
 //! `q = C[p] p`: the ODE is linear in q, `q' = q / L - x / R`, so q is the linear
