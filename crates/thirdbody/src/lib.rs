@@ -18,6 +18,7 @@ pub mod grid;
 pub mod layer;
 pub mod shape;
 pub mod solution;
+pub mod stress;
 
 pub use case::{Body, Case, Elastic, GridSpec, Loading, Units};
 pub use contact::{solve, solve_observed, Progress, SolverParams};
