@@ -28,7 +28,7 @@
 //! d2psi1/dxdy =  S[ln(rho + z)]
 //! ```
 //! The forms have no subtraction of nearly equal numbers (`rho - z` is written
-//! `(u^2 + v^2) / (rho + z)`), use `atan2` with a non-negative second argument so
+//! `(u^2 + v^2) / (rho + z)`), take `atan(y / x)` with `x >= 0` continued to `x = 0` so
 //! they hold at z = 0 (Love's surface stresses, singular only on cell edges), and
 //! the four-corner sums keep ~9 significant digits at 1000 cells from the load.
 //!
@@ -52,8 +52,19 @@ fn corner_primitives(u: f64, v: f64, z: f64, nu: f64) -> [f64; COMPONENTS] {
     let (u2, v2, z2) = (u * u, v * v, z * z);
     let rho = (u2 + v2 + z2).sqrt();
     let uv = u * v;
-    let a = uv.atan2(z * rho);
-    let h1 = (uv * (u2 + v2)).atan2((rho + z) * (u2 * rho + z * v2));
+    // atan(y / x) with x >= 0, continued by +-pi/2 (or 0) at x = 0: atan2 without
+    // its quadrant logic, which is slower.
+    let half_atan = |y: f64, x: f64| {
+        if x > 0.0 {
+            (y / x).atan()
+        } else if y == 0.0 {
+            0.0
+        } else {
+            0.5 * PI * y.signum()
+        }
+    };
+    let a = half_atan(uv, z * rho);
+    let h1 = half_atan(uv * (u2 + v2), (rho + z) * (u2 * rho + z * v2));
     let l = (rho + z).ln();
     let m = 1.0 - 2.0 * nu;
     if z2 == 0.0 {
@@ -190,37 +201,62 @@ impl StressKernels for HomogeneousStressKernels {
         let nu = self.material.poisson;
         let (cols, rows, h) = (lattice.cols, lattice.rows, lattice.cell);
         // Corner primitives on the distinct |u| x |v| (each corner is shared by up to
-        // four cells, and the primitives have a parity in u and in v).
+        // four cells, and the primitives have a parity in u and in v), stored
+        // component-major.
         let (us, umap) = folded_corners(lattice.x_first, cols, h);
         let (vs, vmap) = folded_corners(lattice.y_first, rows, h);
         let nu_ = us.len();
-        let mut prim = vec![[0.0; COMPONENTS]; nu_ * vs.len()];
+        let mut prim: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; nu_ * vs.len()]);
         for (q, &v) in vs.iter().enumerate() {
             for (p, &u) in us.iter().enumerate() {
-                prim[q * nu_ + p] = corner_primitives(u, v, z, nu);
-            }
-        }
-        // Signed corner values, then the four-corner sums.
-        let width = cols + 1;
-        let mut corner = vec![0.0; width * (rows + 1)];
-        table.lattice = Some(*lattice);
-        for c in 0..COMPONENTS {
-            for (r, &(q, sv)) in vmap.iter().enumerate() {
-                let sv = if ODD_IN_V[c] { sv } else { 1.0 };
-                for (k, &(p, su)) in umap.iter().enumerate() {
-                    let su = if ODD_IN_U[c] { su } else { 1.0 };
-                    corner[r * width + k] = su * sv * prim[q * nu_ + p][c];
+                let g = corner_primitives(u, v, z, nu);
+                for (dst, val) in prim.iter_mut().zip(g) {
+                    dst[q * nu_ + p] = val;
                 }
             }
+        }
+        // x offsets symmetric about 0 (the usual case): the kernel row is built for
+        // x >= 0 from consecutive folded corners and mirrored with its parity
+        // (a primitive odd in u gives a kernel even in x and vice versa).
+        let half = (cols + 1) / 2;
+        let symmetric_x = cols % 2 == 1 && lattice.x_first == -((half - 1) as f64) && nu_ == half;
+        let index: Vec<usize> = umap.iter().map(|&(p, _)| p).collect();
+        let sign: Vec<f64> = umap.iter().map(|&(_, s)| s).collect();
+        let even = vec![1.0; umap.len()];
+        let mut corner = vec![0.0; cols + 1];
+        let (mut below, mut above) = (vec![0.0; cols], vec![0.0; cols]);
+        let scale = 1.0 / (2.0 * PI);
+        table.lattice = Some(*lattice);
+        for c in 0..COMPONENTS {
             let out = &mut table.values[c];
             out.clear();
             out.reserve(cols * rows);
-            for m in 0..rows {
-                let (lo, hi) = (&corner[m * width..], &corner[(m + 1) * width..]);
-                for k in 0..cols {
-                    let s = hi[k + 1] - lo[k + 1] - hi[k] + lo[k];
-                    out.push(s / (2.0 * PI));
+            for (r, &(q, sv)) in vmap.iter().enumerate() {
+                let sv = scale * if ODD_IN_V[c] { sv } else { 1.0 };
+                let src = &prim[c][q * nu_..(q + 1) * nu_];
+                // Differences along u of the signed corner values of this corner row.
+                if symmetric_x {
+                    let mirror = if ODD_IN_U[c] { sv } else { -sv };
+                    let centre = if ODD_IN_U[c] { 2.0 * src[0] } else { 0.0 };
+                    above[half - 1] = sv * centre;
+                    for d in 1..half {
+                        let k = src[d] - src[d - 1];
+                        above[half - 1 + d] = sv * k;
+                        above[half - 1 - d] = mirror * k;
+                    }
+                } else {
+                    let weight = if ODD_IN_U[c] { &sign } else { &even };
+                    for ((dst, &p), &w) in corner.iter_mut().zip(&index).zip(weight) {
+                        *dst = w * sv * src[p];
+                    }
+                    for (d, pair) in above.iter_mut().zip(corner.windows(2)) {
+                        *d = pair[1] - pair[0];
+                    }
                 }
+                if r > 0 {
+                    out.extend(above.iter().zip(&below).map(|(a, b)| a - b));
+                }
+                std::mem::swap(&mut above, &mut below);
             }
         }
     }
