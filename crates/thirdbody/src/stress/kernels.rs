@@ -218,7 +218,7 @@ impl StressKernels for HomogeneousStressKernels {
         // x offsets symmetric about 0 (the usual case): the kernel row is built for
         // x >= 0 from consecutive folded corners and mirrored with its parity
         // (a primitive odd in u gives a kernel even in x and vice versa).
-        let half = (cols + 1) / 2;
+        let half = cols.div_ceil(2);
         let symmetric_x = cols % 2 == 1 && lattice.x_first == -((half - 1) as f64) && nu_ == half;
         let index: Vec<usize> = umap.iter().map(|&(p, _)| p).collect();
         let sign: Vec<f64> = umap.iter().map(|&(_, s)| s).collect();
