@@ -76,6 +76,8 @@ struct HertzErrors {
     sigma_z: f64,
     /// Largest |sigma_r - Johnson| / |Johnson| at ten depths on the axis.
     sigma_r: f64,
+    /// Per depth: z / a, sigma_z / p0, Johnson's, sigma_r / p0, Johnson's.
+    axis: Vec<[f64; 5]>,
     /// Computed max tau1 / p0 and its depth / a.
     tau1_max: (f64, f64),
     /// sigma_x (x/a)^2 / p0 at the first cell centres outside the contact on the
@@ -95,9 +97,11 @@ fn hertz_errors(grid: &Grid, p: &[f64], a: f64, p0: f64) -> HertzErrors {
     let depths: Vec<f64> = AXIS_DEPTHS.iter().map(|t| t * a).collect();
     let f = stresses(grid, p, &BODY, &Section::XzPlane { y: 0.0, depths }).unwrap();
     let (mut ez, mut er) = (0.0f64, 0.0f64);
+    let mut axis = Vec::new();
     for (k, &t) in AXIS_DEPTHS.iter().enumerate() {
         let n = f.index(centre, 0, k);
         let (sz, sr) = johnson_axis(t);
+        axis.push([t, f.components[2][n] / p0, sz, f.components[0][n] / p0, sr]);
         ez = ez.max((f.components[2][n] / p0 - sz).abs() / sz.abs());
         er = er.max((f.components[0][n] / p0 - sr).abs() / sr.abs());
         // Axisymmetry: sigma_x = sigma_y on the axis.
@@ -159,6 +163,7 @@ fn hertz_errors(grid: &Grid, p: &[f64], a: f64, p0: f64) -> HertzErrors {
     HertzErrors {
         sigma_z: ez,
         sigma_r: er,
+        axis,
         tau1_max: (tau_max / p0, z_max / a),
         edge_radial,
     }
@@ -177,6 +182,12 @@ fn check(name: &str, e: &HertzErrors) {
         e.edge_radial,
         (1.0 - 2.0 * NU) / 3.0
     );
+    for r in &e.axis {
+        eprintln!(
+            "  z/a {:.1}: sigma_z {:.5} (Johnson {:.5}), sigma_r {:.5} (Johnson {:.5})",
+            r[0], r[1], r[2], r[3], r[4]
+        );
+    }
     assert!(e.sigma_z < 0.01, "sigma_z on the axis");
     assert!(e.sigma_r < 0.01, "sigma_r on the axis");
     // Johnson's published values, and the closed form's own maximum.

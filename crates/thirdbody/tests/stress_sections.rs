@@ -242,3 +242,20 @@ fn derived_fields_have_the_field_length() {
         assert!(vm[n] >= 3f64.sqrt() * t[n] - 1e-12 && vm[n] <= 2.0 * t[n] + 1e-12);
     }
 }
+
+#[test]
+fn surface_normal_stress_is_minus_the_cell_pressure() {
+    // On z = 0 only the loaded cell itself carries sigma_z (= -p) at its centre, and
+    // there is no shear traction (normal loading).
+    let grid = Grid::centred(24, 18, 0.05, [0.0, 0.0]).unwrap();
+    let p = patch(&grid);
+    let body = Body::Homogeneous(MAT);
+    let f = stresses(&grid, &p, &body, &Section::Plane { z: 0.0 }).unwrap();
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let n = f.index(i, j, 0);
+            assert!((f.components[2][n] + p[grid.index(i, j)]).abs() < 1e-12);
+            assert!(f.components[4][n].abs() < 1e-12 && f.components[5][n].abs() < 1e-12);
+        }
+    }
+}
