@@ -1,5 +1,5 @@
 //! Subsurface stresses under a Hertz pressure against Johnson's closed forms
-//! (Contact Mechanics, §3.4 and §4.2, eq. 3.45 and 4.48-4.49 with nu = 0.3):
+//! (Contact Mechanics, §3.4, with nu = 0.3):
 //! along the axis `sigma_z = -p0 / (1 + z^2/a^2)`,
 //! `sigma_r = -p0 [(1 + nu)(1 - (z/a) atan(a/z)) - 1 / (2 (1 + z^2/a^2))]`; the
 //! maximum shear stress `tau1 = 0.31 p0` at `z = 0.48 a`; the surface radial stress
@@ -138,7 +138,11 @@ fn hertz_errors(grid: &Grid, p: &[f64], a: f64, p0: f64) -> HertzErrors {
     let shift = 0.5 * (y0 - y2) / (y0 - 2.0 * y1 + y2);
     let tau_max = y1 - 0.25 * (y0 - y2) * shift;
     let z_max = depths[k] + shift * dz;
-    // Surface radial stress just outside the contact.
+    // Surface radial stress just outside the contact. The cell centred on r = a
+    // straddles the edge (its own pressure is a partial average) and does not sample
+    // the edge value; the first cell centres wholly outside do, through Hertz's
+    // exterior law sigma_r = (1 - 2 nu) p0 a^2 / (3 r^2) (Johnson, Contact
+    // Mechanics §3.4, surface stresses of the Hertz pressure).
     let f = stresses(
         grid,
         p,
