@@ -167,6 +167,14 @@ pub trait StressKernels: Sync {
     /// cell of side `lattice.cell` centred on the origin, at every offset of
     /// `lattice`. `table` is resized as needed so it can be reused across depths.
     fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable);
+
+    /// For each component, whether its kernel is even (`true`) or odd (`false`) in
+    /// y exactly, i.e. `K(x, -y) = +-K(x, y)` to the last bit of [`Self::fill`];
+    /// `None` (the default) if no such symmetry may be assumed. Sections use it to
+    /// share work between source rows at opposite y offsets.
+    fn parity_in_y(&self) -> Option<[bool; COMPONENTS]> {
+        None
+    }
 }
 
 /// Love's kernels for a homogeneous half-space.
@@ -197,6 +205,12 @@ fn folded_corners(first: f64, n: usize, h: f64) -> (Vec<f64>, Vec<(usize, f64)>)
 }
 
 impl StressKernels for HomogeneousStressKernels {
+    fn parity_in_y(&self) -> Option<[bool; COMPONENTS]> {
+        // A primitive odd in v gives a kernel even in y, and vice versa; the folded
+        // evaluation in `fill` makes the symmetry exact.
+        Some(ODD_IN_V)
+    }
+
     fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
         let nu = self.material.poisson;
         let (cols, rows, h) = (lattice.cols, lattice.rows, lattice.cell);

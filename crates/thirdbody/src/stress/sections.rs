@@ -98,42 +98,67 @@ pub(crate) fn xz_plane(
     let loaded: Vec<usize> = (0..ny)
         .filter(|&l| pressure[l * nx..(l + 1) * nx].iter().any(|&p| p != 0.0))
         .collect();
-    let (Some(&l_min), Some(&l_max)) = (loaded.first(), loaded.last()) else {
+    let Some(&l_max) = loaded.last() else {
         return std::array::from_fn(|_| vec![0.0; nx * depths.len()]);
     };
-    // Lattice row m holds the offsets to source row l = l_max - m. A y within
-    // rounding of a row edge is put on it, so that surface stresses there are the
-    // mean of both sides rather than one side chosen by rounding.
+    // Lattice row m holds the offsets to source row l = l_max - m, in cells. A y
+    // within rounding of a row edge is put on it, so that surface stresses there are
+    // the mean of both sides rather than one side chosen by rounding; a y within
+    // rounding of a row centre is put on it, so that rows at opposite offsets pair.
     let mut y_first = (y - grid.y(l_max)) / h;
-    let edge = y_first.floor() + 0.5;
-    if (y_first - edge).abs() < 1e-9 {
-        y_first = edge;
+    for snap in [y_first.floor() + 0.5, y_first.round()] {
+        if (y_first - snap).abs() < 1e-9 {
+            y_first = snap;
+        }
     }
-    let lattice = OffsetLattice {
-        cell: h,
-        x_first: -(nx as f64 - 1.0),
-        cols: 2 * nx - 1,
-        y_first,
-        rows: l_max - l_min + 1,
-    };
     let width = 2 * nx;
     let mut planner = RealFftPlanner::<f64>::new();
     let forward = planner.plan_fft_forward(width);
     let inverse = planner.plan_fft_inverse(width);
     let half = nx + 1;
-    // Spectra of the loaded source rows, zero-padded to 2 nx.
-    let row_spectra: Vec<(usize, Vec<Complex<f64>>)> = loaded
-        .iter()
-        .map(|&l| {
-            let mut real = vec![0.0; width];
-            real[..nx].copy_from_slice(&pressure[l * nx..(l + 1) * nx]);
-            let mut spec = vec![Complex::default(); half];
-            forward
-                .process(&mut real, &mut spec)
-                .expect("FFT lengths are fixed by the plan");
-            (l_max - l, spec)
-        })
-        .collect();
+    // Spectra of the loaded source rows, zero-padded to 2 nx, grouped by |offset|.
+    let mut groups: Vec<SourceGroup> = Vec::new();
+    let mut group_of_offset = std::collections::HashMap::new();
+    let parity = kernels.parity_in_y();
+    for &l in &loaded {
+        let mut real = vec![0.0; width];
+        real[..nx].copy_from_slice(&pressure[l * nx..(l + 1) * nx]);
+        let mut spec = vec![Complex::default(); half];
+        forward
+            .process(&mut real, &mut spec)
+            .expect("FFT lengths are fixed by the plan");
+        let m = l_max - l;
+        let t = y_first + m as f64;
+        let key = if parity.is_some() {
+            t.abs().to_bits()
+        } else {
+            m as u64
+        };
+        let g = *group_of_offset.entry(key).or_insert_with(|| {
+            groups.push(SourceGroup::default());
+            groups.len() - 1
+        });
+        let slot = if t >= 0.0 {
+            &mut groups[g].positive
+        } else {
+            &mut groups[g].negative
+        };
+        *slot = Some((m, spec));
+    }
+    let mut groups: Vec<PairedRows> = groups.into_iter().map(|g| g.paired(half)).collect();
+    // Kernels are needed only at the offsets of the groups' kernel rows.
+    let m_first = groups.iter().map(|g| g.m).min().unwrap_or(0);
+    let m_last = groups.iter().map(|g| g.m).max().unwrap_or(0);
+    for g in &mut groups {
+        g.m -= m_first;
+    }
+    let lattice = OffsetLattice {
+        cell: h,
+        x_first: -(nx as f64 - 1.0),
+        cols: 2 * nx - 1,
+        y_first: y_first + m_first as f64,
+        rows: m_last - m_first + 1,
+    };
     let scratch_len = forward.get_scratch_len().max(inverse.get_scratch_len());
     let scale = 1.0 / width as f64;
     let per_depth: Vec<Components> = depths
@@ -153,7 +178,10 @@ pub(crate) fn xz_plane(
                 let mut out: Components = Default::default();
                 for (c, o) in out.iter_mut().enumerate() {
                     acc.fill(Complex::default());
-                    for (m, p_spec) in &row_spectra {
+                    let even = parity.is_none_or(|even| even[c]);
+                    for group in &groups {
+                        let m = group.m;
+                        let p_spec = if even { &group.plus } else { &group.minus };
                         let row = &table.values[c][m * lattice.cols..(m + 1) * lattice.cols];
                         // Wrap-around order: offsets 0..nx-1, an unused slot, then
                         // the negative offsets -(nx-1)..-1.
@@ -179,6 +207,38 @@ pub(crate) fn xz_plane(
         )
         .collect();
     gather(per_depth, nx)
+}
+
+/// The loaded source rows at offsets `+t` and `-t` (either may be absent).
+#[derive(Default)]
+struct SourceGroup {
+    positive: Option<(usize, Vec<Complex<f64>>)>,
+    negative: Option<(usize, Vec<Complex<f64>>)>,
+}
+
+/// One kernel row (lattice row `m`, offset t) serving the source rows at +-t:
+/// with `K(-t) = K(t)` the rows contribute `K(t) plus`, with `K(-t) = -K(t)`,
+/// `K(t) minus`.
+struct PairedRows {
+    m: usize,
+    plus: Vec<Complex<f64>>,
+    minus: Vec<Complex<f64>>,
+}
+
+impl SourceGroup {
+    fn paired(self, half: usize) -> PairedRows {
+        let zero = vec![Complex::default(); half];
+        let (m, same, opposite) = match (self.positive, self.negative) {
+            (Some((m, s)), Some((_, o))) => (m, s, o),
+            (Some((m, s)), None) | (None, Some((m, s))) => (m, s, zero),
+            (None, None) => unreachable!("a group holds at least one row"),
+        };
+        PairedRows {
+            m,
+            plus: same.iter().zip(&opposite).map(|(a, b)| a + b).collect(),
+            minus: same.iter().zip(&opposite).map(|(a, b)| a - b).collect(),
+        }
+    }
 }
 
 /// Concatenates per-depth component arrays of `n` values each.
