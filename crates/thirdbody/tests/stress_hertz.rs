@@ -9,7 +9,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use thirdbody::stress::{stresses, Section};
-use thirdbody::{Body, Elastic, Grid};
+use thirdbody::{solve, Body, Case, Elastic, Grid, GridSpec, Loading, Slider, SolverParams, Units};
 
 const NU: f64 = 0.3;
 const BODY: Body = Body::Homogeneous(Elastic {
@@ -214,4 +214,44 @@ fn hertz_pressure_sampled_on_the_grid() {
     let grid = Grid::centred(129, 129, a / 32.0, [0.0, 0.0]).unwrap();
     let p = hertz_cell_average(&grid, a, p0);
     check("analytic Hertz pressure", &hertz_errors(&grid, &p, a, p0));
+}
+
+#[test]
+fn hertz_pressure_from_the_solver() {
+    // Sphere R = 1 on E = 1, nu = 0.3 (rigid slider): Hertz a = (3 Q R / (4 E*))^(1/3),
+    // p0 = 2 E* a / (pi R) (Johnson eq. 4.22-4.23). Load chosen for a = 0.02; the
+    // window holds 129 cells with a = 32 cells (a cell centre on the axis).
+    let (radius, a) = (1.0f64, 0.02f64);
+    let e_star = 1.0 / (1.0 - NU * NU);
+    let load = 4.0 * e_star * a.powi(3) / (3.0 * radius);
+    let p0 = 2.0 * e_star * a / (std::f64::consts::PI * radius);
+    let n = 129;
+    let w = 0.5 * n as f64 * a / 32.0;
+    let case = Case {
+        slider: Slider::Sphere { radius },
+        body: BODY,
+        layer: None,
+        loading: Loading {
+            normal_load: load,
+            velocity: None,
+        },
+        grid: GridSpec {
+            cells: [n, n],
+            half_width: Some([w, w]),
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    };
+    let solution = solve(&case, &SolverParams::default()).unwrap();
+    let grid = solution.grid;
+    assert_eq!((grid.nx, grid.ny), (n, n));
+    let e = hertz_errors(&grid, &solution.pressure, a, p0);
+    check("solver Hertz pressure", &e);
+    // The convenience on Solution gives the same field.
+    let section = Section::XzPlane {
+        y: 0.0,
+        depths: vec![0.5 * a],
+    };
+    let direct = stresses(&grid, &solution.pressure, &BODY, &section).unwrap();
+    assert_eq!(solution.stresses(&BODY, &section).unwrap(), direct);
 }
