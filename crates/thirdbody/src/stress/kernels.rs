@@ -20,6 +20,7 @@
 //! ```text
 //! d psi/dz    = -S[A],   A  = atan(u v / (z rho))
 //! d2psi/dx2   =  S[Cx],  Cx = -u v / ((u^2 + z^2) rho)     (Cy likewise with v)
+//! d2psi/dz2   = -S[Cx + Cy]           (psi is harmonic)
 //! d2psi/dxdy  =  S[1/rho]
 //! d2psi/dxdz  =  S[-z v / ((u^2 + z^2) rho)]             (y, z likewise)
 //! d2psi1/dx2  =  S[H1],  H1 = atan(v/u) - atan(z v / (u rho))
