@@ -150,24 +150,46 @@ impl ConvolutionPlan {
         // of cells and stays zero.
         let mut wrapped = vec![0.0; px * py];
         wrapped.par_chunks_mut(px).enumerate().for_each(|(r, row)| {
-            let dj = if r < ny {
-                r as i64
-            } else if r > ny {
-                r as i64 - py as i64
-            } else {
+            let Some(dj) = wrapped_offset(r, ny) else {
                 return;
             };
             for (c, v) in row.iter_mut().enumerate() {
-                let di = if c < nx {
-                    c as i64
-                } else if c > nx {
-                    c as i64 - px as i64
-                } else {
-                    continue;
-                };
-                *v = kernel(di, dj);
+                if let Some(di) = wrapped_offset(c, nx) {
+                    *v = kernel(di, dj);
+                }
             }
         });
+        self.spectrum_of_wrapped(wrapped)
+    }
+
+    /// The spectrum of a kernel that is even in x and in y, given on one quadrant:
+    /// `quadrant[dj * nx + di]` for `0 <= di < nx`, `0 <= dj < ny`.
+    pub fn even_kernel_spectrum(self: &Arc<Self>, quadrant: &[f64]) -> KernelSpectrum {
+        let (nx, ny) = (self.nx, self.ny);
+        assert_eq!(
+            quadrant.len(),
+            nx * ny,
+            "quadrant size does not match the plan"
+        );
+        let px = 2 * nx;
+        let mut wrapped = vec![0.0; px * 2 * ny];
+        wrapped.par_chunks_mut(px).enumerate().for_each(|(r, row)| {
+            let Some(dj) = wrapped_offset(r, ny) else {
+                return;
+            };
+            let src = &quadrant[dj.unsigned_abs() as usize * nx..][..nx];
+            for (c, v) in row.iter_mut().enumerate() {
+                if let Some(di) = wrapped_offset(c, nx) {
+                    *v = src[di.unsigned_abs() as usize];
+                }
+            }
+        });
+        self.spectrum_of_wrapped(wrapped)
+    }
+
+    fn spectrum_of_wrapped(self: &Arc<Self>, wrapped: Vec<f64>) -> KernelSpectrum {
+        let (nx, ny) = (self.nx, self.ny);
+        let (px, py) = (2 * nx, 2 * ny);
         let self_coefficient = wrapped[0];
         let mut conv = self.convolver();
         let values = conv.forward_padded(&wrapped, py);
@@ -178,6 +200,16 @@ impl ConvolutionPlan {
             values: values.into_iter().map(|v| v * scale).collect(),
             self_coefficient,
         }
+    }
+}
+
+/// Offset in cells of index `k` of a wrap-around axis of `2 n` entries, `None` for
+/// the unused middle entry.
+fn wrapped_offset(k: usize, n: usize) -> Option<i64> {
+    match k.cmp(&n) {
+        std::cmp::Ordering::Less => Some(k as i64),
+        std::cmp::Ordering::Equal => None,
+        std::cmp::Ordering::Greater => Some(k as i64 - 2 * n as i64),
     }
 }
 
@@ -413,6 +445,20 @@ mod tests {
                 assert_eq!(spectrum.self_coefficient(), lopsided(0, 0));
             }
         }
+    }
+
+    #[test]
+    fn even_kernel_from_a_quadrant_equals_the_full_kernel() {
+        let (nx, ny) = (11, 8);
+        let even = |di: i64, dj: i64| 1.0 / (1.0 + (di * di) as f64 + 0.5 * (dj * dj) as f64);
+        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
+        let full = plan.kernel_spectrum(even);
+        let quadrant: Vec<f64> = (0..nx * ny)
+            .map(|k| even((k % nx) as i64, (k / nx) as i64))
+            .collect();
+        let half = plan.even_kernel_spectrum(&quadrant);
+        assert_eq!(full.values, half.values);
+        assert_eq!(full.self_coefficient(), half.self_coefficient());
     }
 
     #[test]

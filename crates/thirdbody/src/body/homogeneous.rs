@@ -38,6 +38,38 @@ pub fn homogeneous_surface_kernel(material: Elastic, cell: f64) -> impl Fn(i64, 
     move |di, dj| love_rectangle_displacement(material, a, a, di as f64 * cell, dj as f64 * cell)
 }
 
+/// The kernel of [`homogeneous_surface_kernel`] on one quadrant of offsets,
+/// `[dj * nx + di]` for `0 <= di < nx`, `0 <= dj < ny` (it is even in both). The
+/// primitive F is evaluated once per cell corner of the lattice and shared by the
+/// four cells that meet there, a quarter of the work of cell-by-cell evaluation.
+pub fn homogeneous_surface_kernel_quadrant(
+    material: Elastic,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+) -> Vec<f64> {
+    let nu = material.poisson;
+    let scale = (1.0 - nu * nu) / (std::f64::consts::PI * material.young);
+    let f = |u: f64, v: f64| half_primitive(u, v) + half_primitive(v, u);
+    // corner[l * (nx + 1) + k] = F((k - 1/2) h, (l - 1/2) h)
+    let w = nx + 1;
+    let corner: Vec<f64> = (0..(ny + 1) * w)
+        .map(|m| {
+            f(
+                (m % w) as f64 * cell - 0.5 * cell,
+                (m / w) as f64 * cell - 0.5 * cell,
+            )
+        })
+        .collect();
+    (0..nx * ny)
+        .map(|m| {
+            let (i, j) = (m % nx, m / nx);
+            let at = |k: usize, l: usize| corner[l * w + k];
+            scale * (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j))
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,6 +115,22 @@ mod tests {
                 ((w - point) / point).abs() < 0.2 / (r * r),
                 "r = {r}: {w} vs {point}"
             );
+        }
+    }
+
+    #[test]
+    fn quadrant_table_equals_cell_by_cell_evaluation() {
+        let (nx, ny, h) = (13, 9, 0.37);
+        let table = homogeneous_surface_kernel_quadrant(STEEL, h, nx, ny);
+        let k = homogeneous_surface_kernel(STEEL, h);
+        for j in 0..ny {
+            for i in 0..nx {
+                let direct = k(i as i64, j as i64);
+                assert!(
+                    (table[j * nx + i] - direct).abs() <= 1e-13 * direct,
+                    "{i} {j}"
+                );
+            }
         }
     }
 
