@@ -19,9 +19,11 @@ pub fn surface_kernel_spectrum(
     plan: &Arc<ConvolutionPlan>,
 ) -> Result<KernelSpectrum> {
     match *body {
-        Body::Homogeneous(material) => {
-            Ok(plan.kernel_spectrum(homogeneous::homogeneous_surface_kernel(material, grid.cell)))
-        }
+        Body::Homogeneous(material) => Ok(plan.even_kernel_spectrum(
+            &homogeneous::homogeneous_surface_kernel_quadrant(
+                material, grid.cell, grid.nx, grid.ny,
+            ),
+        )),
         Body::Coated { .. } => Err(crate::error::Error::invalid(
             "coating",
             "a coated body",
