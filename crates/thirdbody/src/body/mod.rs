@@ -3,7 +3,10 @@
 //! centre (paper eq. 9 for a homogeneous half-space, eq. 10 for a coated one), and
 //! its DC-FFT spectrum, built once per grid and material.
 
+pub mod coated;
+mod coated_radial;
 pub mod homogeneous;
+mod quadrature;
 
 use std::sync::Arc;
 
@@ -22,10 +25,18 @@ pub fn surface_kernel_spectrum(
         Body::Homogeneous(material) => {
             Ok(plan.kernel_spectrum(homogeneous::homogeneous_surface_kernel(material, grid.cell)))
         }
-        Body::Coated { .. } => Err(crate::error::Error::invalid(
-            "coating",
-            "a coated body",
-            "a homogeneous body (coated bodies are not implemented yet)",
-        )),
+        Body::Coated {
+            coating,
+            thickness,
+            substrate,
+        } => {
+            let kernel = coated::coated_surface_kernel_cached(
+                coating, thickness, substrate, grid.cell, grid.nx, grid.ny,
+            )?;
+            let nx = grid.nx;
+            Ok(plan.kernel_spectrum(move |di, dj| {
+                kernel[dj.unsigned_abs() as usize * nx + di.unsigned_abs() as usize]
+            }))
+        }
     }
 }
