@@ -287,3 +287,40 @@ fn bad_input_names_the_field() {
     let e = coated_surface_kernel(c, 0.1, s, 0.0, 8, 8).unwrap_err();
     assert_eq!(field_of(e), "grid.cell");
 }
+
+#[test]
+fn case_with_a_bad_coating_is_rejected_with_the_field_named() {
+    use thirdbody::{Body, Case, GridSpec, Loading, Slider, Units};
+    let case = |coating: Elastic, thickness: f64| Case {
+        slider: Slider::Sphere { radius: 1.0 },
+        body: Body::Coated {
+            coating,
+            thickness,
+            substrate: elastic(1.0, 0.3),
+        },
+        layer: None,
+        loading: Loading {
+            normal_load: 1e-5,
+            velocity: None,
+        },
+        grid: GridSpec {
+            cells: [32, 32],
+            half_width: None,
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    };
+    assert!(case(elastic(3.0, 0.3), 0.01).validate().is_ok());
+    for (coating, thickness, field) in [
+        (elastic(3.0, 0.3), 0.0, "coating.thickness"),
+        (elastic(3.0, 0.3), -0.01, "coating.thickness"),
+        (elastic(3.0, 0.5), 0.01, "coating.poisson"),
+        (elastic(0.0, 0.3), 0.01, "coating.young"),
+        (elastic(-1.0, 0.3), 0.01, "coating.young"),
+    ] {
+        let e = case(coating, thickness).validate().unwrap_err();
+        let message = e.to_string();
+        assert_eq!(field_of(e), field, "{message}");
+        assert!(message.contains(field), "{message}");
+    }
+}

@@ -7,8 +7,9 @@
 //! is compressive (sigma_zz(0) = -p), the normal displacement w > 0 into the body.
 //! Fourier transform `p^(k) = int p(x, y) e^{-i k.x} dx dy`, `k = |k|`.
 //! For one Fourier component the problem is a plane-strain problem in the plane of
-//! (k, z). With the Papkovich–Neuber solution `2 mu u = grad phi + z grad psi
-//! - (3 - 4 nu) psi e_z` (Barber, Elasticity, ch. 20, solutions A and B) and
+//! (k, z). With the Papkovich–Neuber solution
+//! `2 mu u = grad phi + z grad psi - (3 - 4 nu) psi e_z`
+//! (Barber, Elasticity, ch. 20, solutions A and B) and
 //! `phi = (A e^{-kz} + C e^{k(z-h1)}) cos k xi`, `psi = k (B e^{-kz} + D e^{k(z-h1)})
 //! cos k xi` in the coating, and only the decaying terms in the substrate, the six
 //! conditions (zero shear and sigma_zz = -p at z = 0; continuity of u_xi, w,
@@ -384,12 +385,14 @@ mod tests {
                 .unwrap();
             m.swap(c, p);
             r.swap(c, p);
-            for i in c + 1..n {
-                let f = m[i][c] / m[c][c];
-                for j in c..n {
-                    m[i][j] -= f * m[c][j];
+            let (top, bottom) = m.split_at_mut(c + 1);
+            let pivot = &top[c];
+            for (i, row) in bottom.iter_mut().enumerate() {
+                let f = row[c] / pivot[c];
+                for (x, p) in row.iter_mut().zip(pivot).skip(c) {
+                    *x -= f * p;
                 }
-                r[i] -= f * r[c];
+                r[c + 1 + i] -= f * r[c];
             }
         }
         let mut x = vec![0.0; n];
