@@ -5,6 +5,7 @@
 
 pub mod coated;
 mod coated_radial;
+pub mod coated_stress;
 pub mod homogeneous;
 mod quadrature;
 
