@@ -47,8 +47,12 @@
 //! Gauss–Legendre panels, so the whole kernel costs O(nx ny) evaluations of a
 //! tabulated smooth function.
 //!
-//! Accuracy: the tests compare with a direct quadrature of the Fourier integral
-//! (eq. 10) and find agreement to better than 1e-8 of the self coefficient.
+//! Accuracy (tests/coated_kernel.rs): against a direct polar quadrature of the
+//! Fourier integral (eq. 10) the kernel agrees to 4e-14 relative (E1/E2 = 10 and
+//! 0.1, h1 = 0.05 and 20 cells, offsets up to (7, 4)); at far offsets its difference
+//! from the substrate kernel follows the analytic multipole tail; the radial table
+//! reproduces its direct evaluation to 1e-11. Cost: about 0.3-0.5 s for 256 x 256
+//! cells on two cores (benches/coated_kernel.rs).
 
 use std::f64::consts::PI;
 use std::sync::{Arc, Mutex};
