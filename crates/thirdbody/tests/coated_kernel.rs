@@ -392,3 +392,31 @@ fn thin_coating_far_field_matches_the_multipole_tail() {
         );
     }
 }
+
+#[test]
+fn elongated_grids_give_the_same_kernel_and_symmetry_holds() {
+    let (c, s, h) = (elastic(4.0, 0.3), elastic(1.0, 0.3), 0.8);
+    let square = coated_surface_kernel(c, h, s, 1.0, 20, 20).unwrap();
+    let wide = coated_surface_kernel(c, h, s, 1.0, 20, 6).unwrap();
+    let tall = coated_surface_kernel(c, h, s, 1.0, 5, 20).unwrap();
+    for dj in 0..6 {
+        for di in 0..20 {
+            let v = square[dj * 20 + di];
+            assert!(
+                (wide[dj * 20 + di] - v).abs() < 1e-12 * square[0],
+                "wide ({di}, {dj})"
+            );
+        }
+    }
+    for dj in 0..20 {
+        for di in 0..5 {
+            let v = square[dj * 20 + di];
+            assert!(
+                (tall[dj * 5 + di] - v).abs() < 1e-12 * square[0],
+                "tall ({di}, {dj})"
+            );
+            // The square cell's kernel is symmetric under x <-> y.
+            assert!((square[di * 20 + dj] - v).abs() < 1e-12 * square[0]);
+        }
+    }
+}

@@ -266,9 +266,11 @@ pub fn coated_surface_kernel(
     let scale = (1.0 - coating.poisson * coating.poisson) / coating.young * h / PI;
     // half[i][j] = int_0^{asinh(v_j/u_i)} mu(u_i cosh tau / h) / cosh tau dtau.
     let rule = GaussLegendre::new(TAU_NODES);
-    let m = n + 1;
-    let mut half = vec![0.0; m * m];
-    half.par_chunks_mut(m).enumerate().for_each(|(i, row)| {
+    // Corners used: half(i, j) with i < nx, j < ny and half(j, i); row i needs
+    // j up to ny - 1 (if i < nx) and up to nx - 1 (if i < ny).
+    let row_length = |i: usize| (if i < nx { ny } else { 0 }).max(if i < ny { nx } else { 0 });
+    let mut half: Vec<Vec<f64>> = (0..n).map(|i| vec![0.0; row_length(i)]).collect();
+    half.par_iter_mut().enumerate().for_each(|(i, row)| {
         let alpha = (i as f64 + 0.5) * cell / h;
         let mut tau = 0.0;
         let mut sum = 0.0;
@@ -289,7 +291,7 @@ pub fn coated_surface_kernel(
         }
     });
     // Corner primitive F(|u_i|, |v_j|) of the remainder.
-    let corner = |i: usize, j: usize| scale * (half[i * m + j] + half[j * m + i]);
+    let corner = |i: usize, j: usize| scale * (half[i][j] + half[j][i]);
     // Signed corner index for the edge at offset d + sign/2 cells.
     let edge = |d: usize, upper: bool| -> (usize, f64) {
         if upper {
