@@ -420,3 +420,20 @@ fn elongated_grids_give_the_same_kernel_and_symmetry_holds() {
         }
     }
 }
+
+#[test]
+fn cached_kernel_is_computed_once_per_case() {
+    use std::sync::Arc;
+    use thirdbody::body::coated::coated_surface_kernel_cached;
+    let (c, s) = (elastic(2.0, 0.3), elastic(1.0, 0.3));
+    let first = coated_surface_kernel_cached(c, 0.37, s, 0.5, 16, 12).unwrap();
+    let again = coated_surface_kernel_cached(c, 0.37, s, 0.5, 16, 12).unwrap();
+    assert!(Arc::ptr_eq(&first, &again));
+    let other = coated_surface_kernel_cached(c, 0.38, s, 0.5, 16, 12).unwrap();
+    assert!(!Arc::ptr_eq(&first, &other));
+    assert_eq!(
+        *first,
+        coated_surface_kernel(c, 0.37, s, 0.5, 16, 12).unwrap()
+    );
+    assert!(coated_surface_kernel_cached(c, -1.0, s, 0.5, 16, 12).is_err());
+}
