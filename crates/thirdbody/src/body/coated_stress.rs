@@ -433,6 +433,17 @@ mod tests {
     }
 
     #[test]
+    fn zero_wavenumber_gives_finite_long_wave_limit() {
+        // Along x at k -> 0: sigma_zz = -p at every depth, no shear.
+        for z in [0.0, 0.3, 5.0] {
+            let t = coated_stress_transfer(STIFF.0, 0.4, STIFF.1, 0.0, 0.0, z);
+            assert!(t.iter().all(|c| c.re.is_finite() && c.im.is_finite()));
+            assert!(close(t[2], Complex::new(-1.0, 0.0), 1e-6));
+            assert!(t[3].norm() < 1e-6 && t[4].norm() < 1e-6);
+        }
+    }
+
+    #[test]
     fn thick_coating_near_the_surface_is_the_coating_alone() {
         let (c, s) = STIFF;
         let (kx, ky) = (2.0, 1.0);
