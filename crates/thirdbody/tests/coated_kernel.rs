@@ -437,3 +437,19 @@ fn cached_kernel_is_computed_once_per_case() {
     );
     assert!(coated_surface_kernel_cached(c, -1.0, s, 0.5, 16, 12).is_err());
 }
+
+#[test]
+fn extremely_thin_and_stiff_coating_is_refused_not_stalled() {
+    // E1/E2 = 1e4 with h1 = 1e-4 cell on a 32 x 32 window: the radial integral
+    // would be needed to R/h1 ~ 5e5; the error names the thickness and the limit.
+    let (c, s) = (elastic(1e4, 0.2), elastic(1.0, 0.3));
+    let e = coated_surface_kernel(c, 1e-4, s, 1.0, 32, 32).unwrap_err();
+    let message = e.to_string();
+    eprintln!("{message}");
+    assert_eq!(field_of(e), "coating.thickness");
+    assert!(message.contains("at least"), "{message}");
+    // A thickness above the stated minimum works.
+    let t = std::time::Instant::now();
+    assert!(coated_surface_kernel(c, 5e-2, s, 1.0, 32, 32).is_ok());
+    eprintln!("h1 = 5e-2: {:.2} s", t.elapsed().as_secs_f64());
+}

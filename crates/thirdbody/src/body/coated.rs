@@ -62,7 +62,7 @@ use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
 
-use super::coated_radial::RadialRemainder;
+use super::coated_radial::{RadialRemainder, MAX_DIRECT_S};
 use super::homogeneous::love_rectangle_displacement;
 use super::quadrature::GaussLegendre;
 use crate::case::Elastic;
@@ -265,7 +265,21 @@ pub fn coated_surface_kernel(
     // Corner offsets are (i + 1/2) cell, i = 0..=n, so s = R / h spans:
     let s_lo = a / h;
     let s_hi = 2f64.sqrt() * (n as f64 + 0.5) * cell / h;
-    let radial = RadialRemainder::new(&factor, s_lo, s_hi);
+    let radial = RadialRemainder::new(&factor, s_lo, s_hi).map_err(|_| {
+        // Only s_hi (window diagonal / h1) can be brought below the limit.
+        let thinnest = s_hi * h / MAX_DIRECT_S;
+        Error::invalid(
+            "coating.thickness",
+            thickness,
+            &format!(
+                "a coating at least {thinnest:.3e} thick for E1/E2 = {:.3e} on this window \
+                 (a thinner, much stiffer coating needs the kernel's radial integral beyond \
+                 R/h1 = {MAX_DIRECT_S:e}); use a smaller window, a thicker coating, or the \
+                 substrate alone",
+                coating.young / substrate.young
+            ),
+        )
+    })?;
     let scale = (1.0 - coating.poisson * coating.poisson) / coating.young * h / PI;
     // half[i][j] = int_0^{asinh(v_j/u_i)} mu(u_i cosh tau / h) / cosh tau dtau.
     let rule = GaussLegendre::new(TAU_NODES);

@@ -37,6 +37,9 @@ const PANEL_WIDTH: f64 = 0.5;
 const PANEL_DEGREE: usize = 20;
 /// Gauss–Legendre nodes per panel of the t integral.
 const T_NODES: usize = 10;
+/// Largest s for which the Hankel integral is evaluated directly (its cost grows
+/// like s: about 3000 s evaluations of J1 for the whole table).
+pub const MAX_DIRECT_S: f64 = 1e4;
 
 /// `mu(s)` on a range of s, ready for fast evaluation.
 #[derive(Debug, Clone)]
@@ -55,8 +58,10 @@ pub struct RadialRemainder {
 }
 
 impl RadialRemainder {
-    /// Prepares `mu(s)` for `s_lo <= s <= s_hi` (0 < s_lo < s_hi).
-    pub fn new(factor: &TransferFactor, s_lo: f64, s_hi: f64) -> Self {
+    /// Prepares `mu(s)` for `s_lo <= s <= s_hi` (0 < s_lo < s_hi). Fails when the
+    /// table would need the direct integral beyond [`MAX_DIRECT_S`] (very stiff,
+    /// very thin coatings under a wide window), returning the s it would need.
+    pub fn new(factor: &TransferFactor, s_lo: f64, s_hi: f64) -> Result<Self, f64> {
         let taylor = factor.taylor_coefficients(TAYLOR_ORDER);
         let zero = taylor.iter().all(|&c| c == 0.0);
         let radius = convergence_radius(&taylor);
@@ -70,10 +75,13 @@ impl RadialRemainder {
             rule: GaussLegendre::new(T_NODES),
         };
         if zero {
-            return this;
+            return Ok(this);
         }
         this.s_switch = this.find_switch(s_hi);
         let top = this.s_switch.min(s_hi);
+        if top > MAX_DIRECT_S {
+            return Err(top);
+        }
         if s_lo < top {
             let (lo, hi) = (s_lo.ln() - 1e-9, top.ln() + 1e-9);
             let panels = ((hi - lo) / PANEL_WIDTH).ceil().max(1.0) as usize;
@@ -90,7 +98,7 @@ impl RadialRemainder {
                 &values,
             ));
         }
-        this
+        Ok(this)
     }
 
     /// The s above which the asymptotic series is used.
@@ -217,7 +225,7 @@ mod tests {
     fn asymptotic_series_matches_the_integral_past_the_switch() {
         for ratio in [10.0, 3.0, 0.1] {
             let f = factor(ratio);
-            let r = RadialRemainder::new(&f, 0.01, 1e5);
+            let r = RadialRemainder::new(&f, 0.01, 1e5).unwrap();
             let s0 = r.switch_point();
             assert!(s0.is_finite() && s0 < 2e3, "{ratio}: switch {s0}");
             for s in [s0, 1.5 * s0] {
@@ -235,7 +243,7 @@ mod tests {
     fn table_matches_direct_evaluation_between_nodes() {
         for ratio in [10.0, 0.1] {
             let f = factor(ratio);
-            let r = RadialRemainder::new(&f, 0.02, 300.0);
+            let r = RadialRemainder::new(&f, 0.02, 300.0).unwrap();
             for k in 0..60 {
                 let s = 0.02 * (1.1f64).powf(k as f64 + 0.37);
                 if s > 300.0 {
@@ -255,7 +263,7 @@ mod tests {
         // M_D(R) -> -(f0) R C / 2 pi near the load: the coating's own 1/r response
         // replaces the substrate's there.
         let f = factor(3.0);
-        let r = RadialRemainder::new(&f, 1e-4, 10.0);
+        let r = RadialRemainder::new(&f, 1e-4, 10.0).unwrap();
         let s = 1e-4;
         let f0 = f.excess(0.0);
         assert!(((r.mu(s) + f0 * s) / (f0 * s)).abs() < 1e-3);
