@@ -21,6 +21,7 @@ pub mod operator;
 pub mod reference;
 pub mod shape;
 pub mod solution;
+pub mod stress;
 
 pub use case::{Body, Case, Elastic, GridSpec, Loading, Units};
 pub use contact::{solve, solve_observed, Progress, SolverParams};

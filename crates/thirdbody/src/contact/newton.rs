@@ -23,6 +23,36 @@ const RESTART: usize = 40;
 /// Most GMRES products per Newton step.
 const MAX_LINEAR_ITERATIONS: usize = 400;
 
+/// Newton steps between checks for a folding row relation.
+const FOLD_CHECK_EVERY: usize = 20;
+/// Smallest damping factor of a Newton step.
+const MIN_STEP: f64 = 1.0 / 64.0;
+
+/// Computes the body and layer displacements and the gap at `(p, D)`; returns the
+/// merit `sum min(p, c g)^2`.
+#[allow(clippy::too_many_arguments)]
+fn evaluate(
+    op: &mut dyn InfluenceOperator,
+    layer: &LayerOperator,
+    f: &[f64],
+    p: &[f64],
+    approach: f64,
+    stiffness: f64,
+    wb: &mut [f64],
+    wl: &mut [f64],
+    g: &mut [f64],
+) -> f64 {
+    op.apply(p, wb);
+    layer.maxwell_row_sweep(p, wl);
+    let mut merit = 0.0;
+    for k in 0..f.len() {
+        g[k] = wb[k] + wl[k] + f[k] - approach;
+        let m = p[k].min(stiffness * g[k]);
+        merit += m * m;
+    }
+    merit
+}
+
 /// Runs the semi-smooth Newton iteration from `p` (overwritten), returning D.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn semismooth_newton(
@@ -67,13 +97,12 @@ pub(crate) fn semismooth_newton(
     let mut linear_iterations = 0;
     let mut last_residual = f64::INFINITY;
 
+    let mut trial = vec![0.0; n];
+    let mut merit = evaluate(
+        op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g,
+    );
     for iteration in 1..=params.max_iterations {
-        if iteration > 1 {
-            op.apply(p, &mut wb);
-            layer.maxwell_row_sweep(p, &mut wl);
-        }
         for k in 0..n {
-            g[k] = wb[k] + wl[k] + f[k] - approach;
             jp[k] = wb[k] + wl[k];
         }
         let residual = relative_complementarity_residual(p, &g, &jp);
@@ -92,6 +121,19 @@ pub(crate) fn semismooth_newton(
             });
         }
         last_residual = residual;
+        // A folding row relation is a property of the discrete model, not of the
+        // iteration: stop early and say so rather than iterate to the limit.
+        if iteration % FOLD_CHECK_EVERY == 0 && residual > 1e-3 {
+            if let Some(hint) = folding_diagnosis(layer, p) {
+                return Err(Error::NoConvergence {
+                    iterations: iteration,
+                    residual,
+                    tolerance: params.tolerance,
+                    history,
+                    hint,
+                });
+            }
+        }
 
         // Contact set of this step.
         let mut indices = Vec::with_capacity(n);
@@ -172,17 +214,60 @@ pub(crate) fn semismooth_newton(
         if !x.iter().all(|v| v.is_finite()) {
             break;
         }
-        p.fill(0.0);
+        // Newton point: x on the contact set, zero off it.
+        full_in.fill(0.0);
         for (a, &k) in indices.iter().enumerate() {
-            p[k] = x[a];
+            full_in[k] = x[a];
         }
-        approach = x[m];
+        // Backtracking on the merit ||min(p, c g)||^2: full steps where they help,
+        // shorter ones where the creep's long reach makes the linearisation poor.
+        let mut alpha = 1.0;
+        loop {
+            for k in 0..n {
+                trial[k] = p[k] + alpha * (full_in[k] - p[k]);
+            }
+            let d = approach + alpha * (x[m] - approach);
+            let m_trial = evaluate(op, layer, f, &trial, d, stiffness, &mut wb, &mut wl, &mut g);
+            if m_trial <= (1.0 - 1e-4 * alpha) * merit || alpha <= MIN_STEP {
+                p.copy_from_slice(&trial);
+                approach = d;
+                merit = m_trial;
+                break;
+            }
+            alpha *= 0.5;
+        }
     }
     Err(Error::NoConvergence {
         iterations: params.max_iterations,
         residual: last_residual,
         tolerance: params.tolerance,
         history,
-        hint: "raise solver.max_iterations or solver.tolerance, or refine the grid".into(),
+        hint: folding_diagnosis(layer, p).unwrap_or_else(|| {
+            "raise solver.max_iterations or solver.tolerance, or refine the grid".into()
+        }),
+    })
+}
+
+/// Explains a failure caused by the model rather than the solver: where a cell's
+/// own layer response `d(instantaneous)/dp + (h / 2VT) d(C p)/dp` is not positive, the
+/// discrete row relation folds (a larger pressure gives a smaller displacement) and
+/// the contact problem has no unique solution. This happens when `C[p] p` decreases
+/// with p (the sigmoid law with delta near 1 at p well above p0) and the cells are
+/// long against the creep length V T.
+fn folding_diagnosis(layer: &LayerOperator, p: &[f64]) -> Option<String> {
+    let jac = layer.linearise(p);
+    let worst = (0..p.len())
+        .filter(|&k| p[k] > 0.0 && jac.diagonal[k] <= 0.0)
+        .map(|k| p[k])
+        .fold(f64::INFINITY, f64::min);
+    worst.is_finite().then(|| {
+        format!(
+            "the layer's row relation folds at pressures above about {worst:.3e} (its \
+             displacement falls as the pressure rises, so the discrete problem has no \
+             unique solution); this happens when C[p] p decreases with p (delta near 1, \
+             p >> p0) and the cells are long against V T (h / (V T) = {:.3e} here): use \
+             a smaller delta, a larger p0, or cells shorter than V T",
+            layer.creep_per_cell()
+        )
     })
 }

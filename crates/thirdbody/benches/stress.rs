@@ -1,0 +1,51 @@
+//! Subsurface-stress speed (issue 4, acceptance 5): the XZ section of 256 points
+//! along x by 128 depths under a 256 x 256 Hertz pressure field, and a
+//! 128 x 128 x 64 block.
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use thirdbody::stress::{stresses, Section};
+use thirdbody::{Body, Elastic, Grid};
+
+/// Hertz pressure `sqrt(1 - r^2/a^2)` at cell centres, contact radius `a`.
+fn hertz(grid: &Grid, a: f64) -> Vec<f64> {
+    let mut p = vec![0.0; grid.len()];
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let r2 = grid.x(i).powi(2) + grid.y(j).powi(2);
+            p[grid.index(i, j)] = (1.0 - r2 / (a * a)).max(0.0).sqrt();
+        }
+    }
+    p
+}
+
+fn bench(c: &mut Criterion) {
+    let body = Body::Homogeneous(Elastic {
+        young: 1.0,
+        poisson: 0.3,
+    });
+    let mut group = c.benchmark_group("stress");
+    group.sample_size(10);
+
+    // Window = 2 contact radii each side of the centre.
+    let grid = Grid::centred(256, 256, 1.0 / 64.0, [0.0, 0.0]).unwrap();
+    let p = hertz(&grid, 1.0);
+    let depths: Vec<f64> = (0..128).map(|k| 2.0 * k as f64 / 127.0).collect();
+    let section = Section::XzPlane { y: 0.0, depths };
+    group.bench_function("xz_256x128_from_256x256", |b| {
+        b.iter(|| black_box(stresses(&grid, &p, &body, &section).unwrap()))
+    });
+
+    let grid = Grid::centred(128, 128, 1.0 / 32.0, [0.0, 0.0]).unwrap();
+    let p = hertz(&grid, 1.0);
+    let depths: Vec<f64> = (0..64).map(|k| 2.0 * k as f64 / 63.0).collect();
+    let section = Section::Block { depths };
+    group.bench_function("block_128x128x64", |b| {
+        b.iter(|| black_box(stresses(&grid, &p, &body, &section).unwrap()))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,234 @@
+//! Subsurface stresses under a computed surface pressure (design.md §2): for each
+//! depth z, each stress component is the discrete convolution of the pressure with
+//! the stresses per unit pressure on one cell (the "stress kernel" of the body),
+//! computed by DC-FFT. The homogeneous body uses Love's closed-form stresses under a
+//! uniformly loaded rectangle (Love 1929; see [`kernels`]); a coated body will plug
+//! its own kernels in through [`StressKernels`].
+//!
+//! Conventions: tension positive, z into the body, pressure p >= 0 compressive on
+//! z = 0 (so `sigma_z = -p` on the surface under the load). Components are ordered
+//! `[sigma_x, sigma_y, sigma_z, tau_xy, tau_xz, tau_yz]`. Surface stresses (z = 0)
+//! are evaluated at cell centres (x always; y as asked), where Love's surface
+//! formulas are finite; on a row edge they give the mean of both sides.
+//!
+//! ```
+//! use thirdbody::stress::{stresses, Section};
+//! use thirdbody::{Body, Elastic, Grid};
+//! let grid = Grid::centred(16, 16, 0.1, [0.0, 0.0]).unwrap();
+//! let mut p = vec![0.0; grid.len()];
+//! p[grid.index(8, 8)] = 1.0;
+//! let body = Body::Homogeneous(Elastic { young: 1.0, poisson: 0.3 });
+//! let field = stresses(&grid, &p, &body, &Section::Plane { z: 0.0 }).unwrap();
+//! // Directly under the loaded cell at the surface, sigma_z = -p.
+//! let k = field.index(8, 8, 0);
+//! assert!((field.components[2][k] + 1.0).abs() < 1e-12);
+//! ```
+
+pub mod derived;
+pub mod kernels;
+mod sections;
+
+pub use kernels::{
+    love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice,
+    StressKernels, COMPONENTS,
+};
+
+use crate::case::Body;
+use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::solution::Solution;
+
+/// Where stresses are wanted. x always runs over the grid's cell centres.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Section {
+    /// The plane y = const (e.g. y = 0 through the point of initial contact), at
+    /// the given depths: a field of `nx x 1 x depths.len()` points.
+    XzPlane {
+        /// y of the plane (any finite value; a cell-centre row or not).
+        y: f64,
+        /// Depths z >= 0.
+        depths: Vec<f64>,
+    },
+    /// One plane z = const (z = 0 is the surface) at every cell centre.
+    Plane {
+        /// Depth z >= 0.
+        z: f64,
+    },
+    /// A block: every cell centre at each depth.
+    Block {
+        /// Depths z >= 0.
+        depths: Vec<f64>,
+    },
+}
+
+/// Stresses on a section: component `c` at `(xs[i], ys[j], zs[k])` is
+/// `components[c][(k * ys.len() + j) * xs.len() + i]` (x fastest, then y, then z).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StressField {
+    /// x of the points (the grid's cell centres).
+    pub xs: Vec<f64>,
+    /// y of the points.
+    pub ys: Vec<f64>,
+    /// Depths.
+    pub zs: Vec<f64>,
+    /// `[sigma_x, sigma_y, sigma_z, tau_xy, tau_xz, tau_yz]`, tension positive.
+    pub components: [Vec<f64>; COMPONENTS],
+}
+
+impl StressField {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.xs.len() * self.ys.len() * self.zs.len()
+    }
+
+    /// Whether the field has no points.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Flat index of point `(xs[i], ys[j], zs[k])`.
+    pub fn index(&self, i: usize, j: usize, k: usize) -> usize {
+        (k * self.ys.len() + j) * self.xs.len() + i
+    }
+
+    /// The six components at flat index `n`.
+    pub fn tensor(&self, n: usize) -> [f64; COMPONENTS] {
+        std::array::from_fn(|c| self.components[c][n])
+    }
+
+    /// Principal stresses `[s1, s2, s3]` (`s1 >= s2 >= s3`) at every point.
+    pub fn principal(&self) -> [Vec<f64>; 3] {
+        let mut out: [Vec<f64>; 3] = Default::default();
+        for n in 0..self.len() {
+            let s = derived::principal_stresses(self.tensor(n));
+            for (o, v) in out.iter_mut().zip(s) {
+                o.push(v);
+            }
+        }
+        out
+    }
+
+    /// Maximum shear stress `tau1 = (s1 - s3) / 2` at every point.
+    pub fn tau1(&self) -> Vec<f64> {
+        (0..self.len())
+            .map(|n| derived::max_shear(self.tensor(n)))
+            .collect()
+    }
+
+    /// Von Mises equivalent stress at every point.
+    pub fn von_mises(&self) -> Vec<f64> {
+        (0..self.len())
+            .map(|n| derived::von_mises(self.tensor(n)))
+            .collect()
+    }
+}
+
+/// The stress kernels of a body: the hook where each body type supplies its own.
+pub fn stress_kernels(body: &Body) -> Result<Box<dyn StressKernels>> {
+    body.validate()?;
+    match *body {
+        Body::Homogeneous(material) => Ok(Box::new(HomogeneousStressKernels { material })),
+        Body::Coated { .. } => Err(Error::invalid(
+            "body",
+            "a coated body",
+            "a homogeneous body (subsurface stresses in coated bodies are not implemented yet)",
+        )),
+    }
+}
+
+/// Checks a list of depths: at least one, each finite and >= 0.
+fn check_depths(depths: &[f64]) -> Result<()> {
+    if depths.is_empty() {
+        return Err(Error::invalid(
+            "stress.depths",
+            "[] (no depths)",
+            "at least one depth",
+        ));
+    }
+    for (k, &z) in depths.iter().enumerate() {
+        check_depth(&format!("stress.depths[{k}]"), z)?;
+    }
+    Ok(())
+}
+
+fn check_depth(field: &str, z: f64) -> Result<()> {
+    if z.is_finite() && z >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            field,
+            z,
+            "a finite depth >= 0 (z points into the body)",
+        ))
+    }
+}
+
+/// All six stress components on `section` under `pressure` (one value per cell of
+/// `grid`, row-major with rows along y, uniform over each cell) on `body`.
+pub fn stresses(
+    grid: &Grid,
+    pressure: &[f64],
+    body: &Body,
+    section: &Section,
+) -> Result<StressField> {
+    if pressure.len() != grid.len() {
+        return Err(Error::invalid(
+            "pressure",
+            format!("{} values", pressure.len()),
+            &format!(
+                "one value per grid cell ({} x {} = {})",
+                grid.nx,
+                grid.ny,
+                grid.len()
+            ),
+        ));
+    }
+    if let Some(k) = pressure.iter().position(|p| !p.is_finite()) {
+        return Err(Error::invalid(
+            &format!("pressure[{k}]"),
+            pressure[k],
+            "a finite pressure",
+        ));
+    }
+    match section {
+        Section::XzPlane { y, depths } => {
+            if !y.is_finite() {
+                return Err(Error::invalid("stress.y", y, "a finite y"));
+            }
+            check_depths(depths)?;
+        }
+        Section::Plane { z } => check_depth("stress.z", *z)?,
+        Section::Block { depths } => check_depths(depths)?,
+    }
+    let kernels = stress_kernels(body)?;
+    let xs: Vec<f64> = (0..grid.nx).map(|i| grid.x(i)).collect();
+    let all_ys = || (0..grid.ny).map(|j| grid.y(j)).collect::<Vec<f64>>();
+    let field = match section {
+        Section::XzPlane { y, depths } => StressField {
+            xs,
+            ys: vec![*y],
+            zs: depths.clone(),
+            components: sections::xz_plane(grid, pressure, kernels.as_ref(), *y, depths),
+        },
+        Section::Plane { z } => StressField {
+            xs,
+            ys: all_ys(),
+            zs: vec![*z],
+            components: sections::planes(grid, pressure, kernels.as_ref(), &[*z]),
+        },
+        Section::Block { depths } => StressField {
+            xs,
+            ys: all_ys(),
+            zs: depths.clone(),
+            components: sections::planes(grid, pressure, kernels.as_ref(), depths),
+        },
+    };
+    Ok(field)
+}
+
+impl Solution {
+    /// Subsurface stresses of this solution's pressure on `body` (the case's body).
+    pub fn stresses(&self, body: &Body, section: &Section) -> Result<StressField> {
+        stresses(&self.grid, &self.pressure, body, section)
+    }
+}
