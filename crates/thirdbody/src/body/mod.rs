@@ -3,7 +3,11 @@
 //! centre (paper eq. 9 for a homogeneous half-space, eq. 10 for a coated one), and
 //! its DC-FFT spectrum, built once per grid and material.
 
+pub mod coated;
+mod coated_radial;
+pub mod coated_stress;
 pub mod homogeneous;
+mod quadrature;
 
 use std::sync::Arc;
 
@@ -24,10 +28,15 @@ pub fn surface_kernel_spectrum(
                 material, grid.cell, grid.nx, grid.ny,
             ),
         )),
-        Body::Coated { .. } => Err(crate::error::Error::invalid(
-            "coating",
-            "a coated body",
-            "a homogeneous body (coated bodies are not implemented yet)",
-        )),
+        Body::Coated {
+            coating,
+            thickness,
+            substrate,
+        } => {
+            let kernel = coated::coated_surface_kernel_cached(
+                coating, thickness, substrate, grid.cell, grid.nx, grid.ny,
+            )?;
+            Ok(plan.even_kernel_spectrum(&kernel))
+        }
     }
 }

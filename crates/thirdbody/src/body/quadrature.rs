@@ -1,0 +1,179 @@
+//! Small quadrature and interpolation tools for the coated-body kernel:
+//! Gauss–Legendre rules (nodes from Newton's method on the Legendre recurrence;
+//! Davis & Rabinowitz, Methods of Numerical Integration, §2.7) and piecewise
+//! Chebyshev interpolation of a smooth function on an interval (Trefethen,
+//! Approximation Theory and Approximation Practice, ch. 3: interpolation in the
+//! Chebyshev points of the first kind, evaluated by Clenshaw's recurrence).
+
+/// A Gauss–Legendre rule on [-1, 1].
+#[derive(Debug, Clone)]
+pub struct GaussLegendre {
+    /// Nodes in increasing order.
+    pub nodes: Vec<f64>,
+    /// Weights, summing to 2.
+    pub weights: Vec<f64>,
+}
+
+impl GaussLegendre {
+    /// The `n`-point rule (exact for polynomials of degree 2n - 1).
+    pub fn new(n: usize) -> Self {
+        let mut nodes = vec![0.0; n];
+        let mut weights = vec![0.0; n];
+        for i in 0..n.div_ceil(2) {
+            // Tricomi's initial guess, then Newton on P_n.
+            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut derivative = 1.0;
+            for _ in 0..100 {
+                let (p, dp) = legendre_with_derivative(n, x);
+                derivative = dp;
+                let step = p / dp;
+                x -= step;
+                if step.abs() < 1e-16 {
+                    break;
+                }
+            }
+            let (_, dp) = legendre_with_derivative(n, x);
+            if dp.is_finite() {
+                derivative = dp;
+            }
+            let w = 2.0 / ((1.0 - x * x) * derivative * derivative);
+            nodes[i] = -x;
+            nodes[n - 1 - i] = x;
+            weights[i] = w;
+            weights[n - 1 - i] = w;
+        }
+        if n % 2 == 1 {
+            nodes[n / 2] = 0.0;
+        }
+        GaussLegendre { nodes, weights }
+    }
+
+    /// `int_lo^hi g(x) dx` by this rule.
+    pub fn integrate(&self, lo: f64, hi: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
+        let half = 0.5 * (hi - lo);
+        let mid = 0.5 * (hi + lo);
+        let mut sum = 0.0;
+        for (x, w) in self.nodes.iter().zip(&self.weights) {
+            sum += w * g(mid + half * x);
+        }
+        sum * half
+    }
+}
+
+/// `(P_n(x), P_n'(x))` by the three-term recurrence.
+fn legendre_with_derivative(n: usize, x: f64) -> (f64, f64) {
+    let (mut p0, mut p1) = (1.0, x);
+    if n == 0 {
+        return (1.0, 0.0);
+    }
+    for k in 2..=n {
+        let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+        p0 = p1;
+        p1 = p2;
+    }
+    let dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+    (p1, dp)
+}
+
+/// A smooth function on `[lo, hi]` as equal panels, each a Chebyshev series.
+#[derive(Debug, Clone)]
+pub struct ChebyshevPanels {
+    lo: f64,
+    width: f64,
+    degree: usize,
+    /// Coefficients, `degree` per panel.
+    coefficients: Vec<f64>,
+}
+
+impl ChebyshevPanels {
+    /// The Chebyshev points (first kind) of `panels` equal panels on `[lo, hi]`,
+    /// `degree` per panel, panel after panel: sample the function there and pass
+    /// the values to [`ChebyshevPanels::from_values`].
+    pub fn points(lo: f64, hi: f64, panels: usize, degree: usize) -> Vec<f64> {
+        let width = (hi - lo) / panels as f64;
+        let mut x = Vec::with_capacity(panels * degree);
+        for p in 0..panels {
+            let mid = lo + (p as f64 + 0.5) * width;
+            for k in 0..degree {
+                let c = (std::f64::consts::PI * (k as f64 + 0.5) / degree as f64).cos();
+                x.push(mid + 0.5 * width * c);
+            }
+        }
+        x
+    }
+
+    /// The interpolant of the values taken at [`ChebyshevPanels::points`].
+    pub fn from_values(lo: f64, hi: f64, panels: usize, degree: usize, values: &[f64]) -> Self {
+        let width = (hi - lo) / panels as f64;
+        let mut coefficients = vec![0.0; panels * degree];
+        for p in 0..panels {
+            let v = &values[p * degree..(p + 1) * degree];
+            for j in 0..degree {
+                let mut s = 0.0;
+                for (k, vk) in v.iter().enumerate() {
+                    s += vk
+                        * (std::f64::consts::PI * j as f64 * (k as f64 + 0.5) / degree as f64)
+                            .cos();
+                }
+                let scale = if j == 0 { 1.0 } else { 2.0 } / degree as f64;
+                coefficients[p * degree + j] = s * scale;
+            }
+        }
+        ChebyshevPanels {
+            lo,
+            width,
+            degree,
+            coefficients,
+        }
+    }
+
+    /// The interpolant at `x` (panels extrapolate slightly beyond `[lo, hi]`).
+    pub fn eval(&self, x: f64) -> f64 {
+        let panels = self.coefficients.len() / self.degree;
+        let p = (((x - self.lo) / self.width).floor().max(0.0) as usize).min(panels - 1);
+        let mid = self.lo + (p as f64 + 0.5) * self.width;
+        let u = 2.0 * (x - mid) / self.width;
+        let c = &self.coefficients[p * self.degree..(p + 1) * self.degree];
+        // Clenshaw.
+        let (mut b1, mut b2) = (0.0, 0.0);
+        for &cj in c.iter().skip(1).rev() {
+            let b0 = 2.0 * u * b1 - b2 + cj;
+            b2 = b1;
+            b1 = b0;
+        }
+        u * b1 - b2 + c[0]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_legendre_integrates_polynomials_and_exp_exactly() {
+        for n in [1, 2, 5, 10, 16] {
+            let rule = GaussLegendre::new(n);
+            assert!((rule.weights.iter().sum::<f64>() - 2.0).abs() < 1e-14);
+            // x^(2n-2) over [-1, 1] = 2 / (2n - 1).
+            let m = 2 * n as i32 - 2;
+            let s = rule.integrate(-1.0, 1.0, |x| x.powi(m));
+            assert!((s - 2.0 / (m + 1) as f64).abs() < 1e-14, "n = {n}: {s}");
+        }
+        let rule = GaussLegendre::new(12);
+        let s = rule.integrate(0.0, 1.0, f64::exp);
+        assert!((s - (1f64.exp() - 1.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn chebyshev_panels_interpolate_a_smooth_function() {
+        let (lo, hi) = (-2.0, 3.0);
+        let x = ChebyshevPanels::points(lo, hi, 5, 16);
+        let values: Vec<f64> = x.iter().map(|&x| (x.sin() + 0.3 * x).exp()).collect();
+        let c = ChebyshevPanels::from_values(lo, hi, 5, 16, &values);
+        for k in 0..=1000 {
+            let x = lo + (hi - lo) * k as f64 / 1000.0;
+            let exact = (x.sin() + 0.3 * x).exp();
+            assert!((c.eval(x) - exact).abs() < 1e-13 * exact, "{x}");
+        }
+    }
+}
