@@ -122,6 +122,19 @@ fn paper_fig3_parses_into_the_hand_built_case() {
 }
 
 #[test]
+fn shipped_examples_parse() {
+    // examples/paper_fig3.toml is issue 2's text exactly.
+    let fig3 = include_str!("../../../examples/paper_fig3.toml");
+    assert_eq!(fig3.trim(), FIG3.trim());
+    let hertz = parse(include_str!("../../../examples/hertz.toml")).unwrap();
+    assert!(hertz.case.layer.is_none());
+    assert_eq!(hertz.case.grid.cells, [128, 128]);
+    let ellipsoid = parse(include_str!("../../../examples/ellipsoid_si.toml")).unwrap();
+    assert_eq!(ellipsoid.case.units, Units::Si);
+    assert!(matches!(ellipsoid.case.slider, Slider::Ellipsoid { .. }));
+}
+
+#[test]
 fn no_layer_needs_no_velocity_and_accepts_integers_for_reals() {
     let text = with(HERTZ, "young", "young = 2");
     let file = parse(&text).unwrap();
