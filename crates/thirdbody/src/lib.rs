@@ -16,7 +16,10 @@ pub mod contact;
 pub mod convolution;
 pub mod error;
 pub mod grid;
+pub mod krylov;
 pub mod layer;
+pub mod operator;
+pub mod reference;
 pub mod shape;
 pub mod solution;
 

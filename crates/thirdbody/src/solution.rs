@@ -30,7 +30,7 @@ pub struct SolveInfo {
     pub iterations: usize,
     /// Inner Krylov iterations in total (0 for CG).
     pub linear_iterations: usize,
-    /// Final relative complementarity residual `||min(p, g / c)|| / ||p||`.
+    /// Final relative complementarity residual (see the contact module).
     pub residual: f64,
     /// Windows tried (the automatic window may enlarge or refit).
     pub windows: usize,

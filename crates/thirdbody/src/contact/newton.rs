@@ -1,0 +1,188 @@
+//! Semi-smooth Newton (primal–dual active set; Hintermüller, Ito & Kunisch, SIAM J.
+//! Optim. 13, 2002) for the layered contact, whose operator `K + J_layer` is not
+//! symmetric because the layer's creep is causal along x (design.md §2). The
+//! complementarity conditions `p >= 0, g >= 0, p g = 0` are written as
+//! `min(p, c g) = 0` with `c` the inverse of a cell's own compliance; each Newton
+//! step fixes the contact set `A = {p - c g > 0}`, sets `p = 0` off it and solves the
+//! linearised `g = 0` on it together with the load equation (paper system 6, with D
+//! as one more unknown) by GMRES. The preconditioner is the layer's row-wise
+//! triangular Jacobian plus the body's self-coefficient on the diagonal, inverted by
+//! forward substitution from the leading edge, with the load row eliminated through
+//! its Schur complement. When the layer dominates the body (slow sliding, soft
+//! layer) it is nearly exact and GMRES needs a handful of products per step.
+
+use super::{relative_complementarity_residual, SolveReport};
+use crate::contact::{Progress, SolverParams};
+use crate::error::{Error, Result};
+use crate::krylov::Gmres;
+use crate::layer::LayerOperator;
+use crate::operator::InfluenceOperator;
+
+/// Krylov subspace size before a restart.
+const RESTART: usize = 40;
+/// Most GMRES products per Newton step.
+const MAX_LINEAR_ITERATIONS: usize = 400;
+
+/// Runs the semi-smooth Newton iteration from `p` (overwritten), returning D.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn semismooth_newton(
+    op: &mut dyn InfluenceOperator,
+    layer: &LayerOperator,
+    f: &[f64],
+    load: f64,
+    cell_area: f64,
+    p: &mut [f64],
+    params: &SolverParams,
+    observer: &mut dyn FnMut(Progress),
+) -> Result<SolveReport> {
+    let n = f.len();
+    let self_coefficient = op.self_coefficient();
+    let layer0 = layer.linearise(&[0.0]).diagonal[0];
+    let stiffness = 1.0 / (self_coefficient + layer0);
+    let target_sum = load / cell_area;
+
+    let mut wb = vec![0.0; n];
+    let mut wl = vec![0.0; n];
+    let mut g = vec![0.0; n];
+    let mut jp = vec![0.0; n];
+    let mut active = vec![false; n];
+    let mut full_in = vec![0.0; n];
+    let mut full_out = vec![0.0; n];
+    let mut full_aux = vec![0.0; n];
+    let mut full_pre = vec![0.0; n];
+    let mut full_tri = vec![0.0; n];
+
+    // Approach consistent with the initial pressure: zero mean gap over its support.
+    op.apply(p, &mut wb);
+    layer.maxwell_row_sweep(p, &mut wl);
+    let (mut s, mut c) = (0.0, 0usize);
+    for k in 0..n {
+        if p[k] > 0.0 {
+            s += wb[k] + wl[k] + f[k];
+            c += 1;
+        }
+    }
+    let mut approach = s / c.max(1) as f64;
+    let mut history = Vec::new();
+    let mut linear_iterations = 0;
+    let mut last_residual = f64::INFINITY;
+
+    for iteration in 1..=params.max_iterations {
+        if iteration > 1 {
+            op.apply(p, &mut wb);
+            layer.maxwell_row_sweep(p, &mut wl);
+        }
+        for k in 0..n {
+            g[k] = wb[k] + wl[k] + f[k] - approach;
+            jp[k] = wb[k] + wl[k];
+        }
+        let residual = relative_complementarity_residual(p, &g, &jp);
+        history.push(residual);
+        observer(Progress::Iteration {
+            iteration,
+            residual,
+        });
+        if residual <= params.tolerance {
+            return Ok(SolveReport {
+                iterations: iteration,
+                linear_iterations,
+                residual,
+                approach,
+                history,
+            });
+        }
+        last_residual = residual;
+
+        // Contact set of this step.
+        let mut indices = Vec::with_capacity(n);
+        for k in 0..n {
+            active[k] = p[k] - stiffness * g[k] > 0.0;
+            if active[k] {
+                indices.push(k);
+            }
+        }
+        if indices.is_empty() {
+            // Keep the cell of least gap in contact so that the load can be carried.
+            let k = (0..n).min_by(|&a, &b| g[a].total_cmp(&g[b])).unwrap_or(0);
+            active[k] = true;
+            indices.push(k);
+        }
+        let m = indices.len();
+        let jac = layer.linearise(p);
+        jac.apply(p, &mut jp);
+        // Scaled system: rows of A times c, the load row times 1/sqrt(m).
+        let load_scale = 1.0 / (m as f64).sqrt();
+        let mut rhs = vec![0.0; m + 1];
+        for (a, &k) in indices.iter().enumerate() {
+            rhs[a] = stiffness * (jp[k] - wl[k] - f[k]);
+        }
+        rhs[m] = load_scale * target_sum;
+        let mut x = vec![0.0; m + 1];
+        for (a, &k) in indices.iter().enumerate() {
+            x[a] = p[k];
+        }
+        x[m] = approach;
+
+        // Preconditioner pieces: z1 = M^-1 1 on the contact set.
+        full_in.fill(0.0);
+        for &k in &indices {
+            full_in[k] = 1.0;
+        }
+        let mut z1 = vec![0.0; n];
+        jac.solve_restricted(self_coefficient, &active, &full_in, &mut z1);
+        let z1_sum: f64 = indices.iter().map(|&k| z1[k]).sum();
+
+        let mut apply = |y: &[f64], out: &mut [f64]| {
+            full_in.fill(0.0);
+            for (a, &k) in indices.iter().enumerate() {
+                full_in[k] = y[a];
+            }
+            op.apply(&full_in, &mut full_out);
+            jac.apply(&full_in, &mut full_aux);
+            for (a, &k) in indices.iter().enumerate() {
+                out[a] = stiffness * (full_out[k] + full_aux[k] - y[m]);
+            }
+            out[m] = load_scale * y[..m].iter().sum::<f64>();
+        };
+        let mut precondition = |r: &[f64], out: &mut [f64]| {
+            full_pre.fill(0.0);
+            for (a, &k) in indices.iter().enumerate() {
+                full_pre[k] = r[a] / stiffness;
+            }
+            let rd = r[m] / load_scale;
+            jac.solve_restricted(self_coefficient, &active, &full_pre, &mut full_tri);
+            let t_sum: f64 = indices.iter().map(|&k| full_tri[k]).sum();
+            let d = (rd - t_sum) / z1_sum;
+            for (a, &k) in indices.iter().enumerate() {
+                out[a] = full_tri[k] + d * z1[k];
+            }
+            out[m] = d;
+        };
+        let eta = (0.01 * residual).clamp(1e-13, 1e-2);
+        let mut gmres = Gmres::new(m + 1, RESTART.min(m + 1));
+        let info = gmres.solve(
+            &mut apply,
+            &mut precondition,
+            &rhs,
+            &mut x,
+            eta,
+            MAX_LINEAR_ITERATIONS,
+        );
+        linear_iterations += info.iterations;
+        if !x.iter().all(|v| v.is_finite()) {
+            break;
+        }
+        p.fill(0.0);
+        for (a, &k) in indices.iter().enumerate() {
+            p[k] = x[a];
+        }
+        approach = x[m];
+    }
+    Err(Error::NoConvergence {
+        iterations: params.max_iterations,
+        residual: last_residual,
+        tolerance: params.tolerance,
+        history,
+        hint: "raise solver.max_iterations or solver.tolerance, or refine the grid".into(),
+    })
+}

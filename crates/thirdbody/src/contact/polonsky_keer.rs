@@ -1,0 +1,171 @@
+//! Polonsky–Keer conjugate gradients (Polonsky & Keer, Wear 231, 1999) for the
+//! contact problem with a symmetric positive definite operator `A = K + c_w I`: the
+//! bare body (`c_w = 0`) or a body under a creep-free linear layer (a Winkler bed of
+//! compliance `c_w`). Minimises the complementary energy over `p >= 0` with the load
+//! constraint `sum(p) h^2 = Q`; the approach D is the mean of `A p + f` over the
+//! contact. The product `A t` of each step also updates `A p` when the projection
+//! leaves the step unchanged, so late iterations cost one convolution each.
+
+use super::{relative_complementarity_residual, SolveReport};
+use crate::contact::{Progress, SolverParams};
+use crate::error::{Error, Result};
+use crate::operator::InfluenceOperator;
+
+/// Exact recomputation of `A p` at least this often, against drift of the updates.
+const REFRESH_EVERY: usize = 20;
+
+/// Runs PK-CG from the positive initial pressure in `p` (overwritten).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn polonsky_keer(
+    op: &mut dyn InfluenceOperator,
+    winkler: f64,
+    f: &[f64],
+    load: f64,
+    cell_area: f64,
+    p: &mut [f64],
+    params: &SolverParams,
+    observer: &mut dyn FnMut(Progress),
+) -> Result<SolveReport> {
+    let n = f.len();
+    let target_sum = load / cell_area;
+    normalise(p, target_sum);
+    let mut u = vec![0.0; n];
+    let mut g = vec![0.0; n];
+    let mut t = vec![0.0; n];
+    let mut r = vec![0.0; n];
+    let mut in_contact = vec![false; n];
+    let apply = |op: &mut dyn InfluenceOperator, x: &[f64], out: &mut [f64]| {
+        op.apply(x, out);
+        if winkler != 0.0 {
+            out.iter_mut().zip(x).for_each(|(o, xi)| *o += winkler * xi);
+        }
+    };
+    apply(op, p, &mut u);
+    let mut conjugate = false;
+    let mut g_old = 1.0;
+    let mut history = Vec::new();
+    let mut since_refresh = 0;
+    for iteration in 1..=params.max_iterations {
+        // Gap with D chosen as the mean over the contact.
+        let (mut sum, mut count) = (0.0, 0usize);
+        for k in 0..n {
+            g[k] = u[k] + f[k];
+            if p[k] > 0.0 {
+                sum += g[k];
+                count += 1;
+            }
+        }
+        let approach = sum / count.max(1) as f64;
+        g.iter_mut().for_each(|v| *v -= approach);
+        let residual = relative_complementarity_residual(p, &g, &u);
+        history.push(residual);
+        observer(Progress::Iteration {
+            iteration,
+            residual,
+        });
+        if residual <= params.tolerance {
+            if since_refresh == 0 {
+                return Ok(SolveReport {
+                    iterations: iteration,
+                    linear_iterations: 0,
+                    residual,
+                    approach,
+                    history,
+                });
+            }
+            // Confirm on an exactly recomputed A p before stopping.
+            apply(op, p, &mut u);
+            since_refresh = 0;
+            continue;
+        }
+        in_contact
+            .iter_mut()
+            .zip(p.iter())
+            .for_each(|(c, pk)| *c = *pk > 0.0);
+        let big_g: f64 = (0..n).filter(|&k| in_contact[k]).map(|k| g[k] * g[k]).sum();
+        let beta = if conjugate { big_g / g_old } else { 0.0 };
+        for k in 0..n {
+            t[k] = if p[k] > 0.0 { g[k] + beta * t[k] } else { 0.0 };
+        }
+        g_old = big_g;
+        apply(op, &t, &mut r);
+        let (mut rsum, mut rcount) = (0.0, 0usize);
+        for k in 0..n {
+            if p[k] > 0.0 {
+                rsum += r[k];
+                rcount += 1;
+            }
+        }
+        let rbar = rsum / rcount.max(1) as f64;
+        let (mut num, mut den) = (0.0, 0.0);
+        for k in 0..n {
+            if p[k] > 0.0 {
+                num += g[k] * t[k];
+                den += (r[k] - rbar) * t[k];
+            }
+        }
+        if den <= 0.0 || !den.is_finite() {
+            return Err(no_convergence(iteration, residual, params, history));
+        }
+        let tau = num / den;
+        let mut projected = false;
+        for k in 0..n {
+            if p[k] > 0.0 {
+                p[k] -= tau * t[k];
+                if p[k] < 0.0 {
+                    p[k] = 0.0;
+                    projected = true;
+                }
+            }
+        }
+        let mut overlap = false;
+        for k in 0..n {
+            // Cells that were not loaded but where the surfaces overlap join the contact.
+            if !in_contact[k] && g[k] < 0.0 {
+                p[k] -= tau * g[k];
+                overlap = true;
+            }
+        }
+        conjugate = !overlap;
+        let scale = normalise(p, target_sum);
+        if projected || overlap || since_refresh >= REFRESH_EVERY {
+            apply(op, p, &mut u);
+            since_refresh = 0;
+        } else {
+            u.iter_mut()
+                .zip(&r)
+                .for_each(|(ui, ri)| *ui = scale * (*ui - tau * ri));
+            since_refresh += 1;
+        }
+    }
+    let residual = history.last().copied().unwrap_or(f64::INFINITY);
+    Err(no_convergence(
+        params.max_iterations,
+        residual,
+        params,
+        history,
+    ))
+}
+
+/// Scales `p` to the given sum; returns the factor.
+fn normalise(p: &mut [f64], target_sum: f64) -> f64 {
+    let s: f64 = p.iter().sum();
+    let scale = if s > 0.0 { target_sum / s } else { 1.0 };
+    p.iter_mut().for_each(|v| *v *= scale);
+    scale
+}
+
+fn no_convergence(
+    iterations: usize,
+    residual: f64,
+    params: &SolverParams,
+    history: Vec<f64>,
+) -> Error {
+    Error::NoConvergence {
+        iterations,
+        residual,
+        tolerance: params.tolerance,
+        history,
+        hint: "raise solver.max_iterations or solver.tolerance".into(),
+    }
+}

@@ -1,0 +1,252 @@
+//! The automatic window and the initial pressure guesses. The contact's size is
+//! estimated from three limits: Hertz (`a = (3 Q R / 4 E*)^(1/3)`, Johnson eq.
+//! 4.22), a Winkler bed of compliance C0 (`a = (4 R C0 Q / pi)^(1/4)`), and the
+//! creep-dominated rigid-base limit, where the pressure is `p ~ V T x / (C0 R)` on a
+//! half disc ahead of the initial contact of radius `r = (3 Q C0 R / (2 V T))^(1/3)`
+//! (design.md §1a). After a solve the window is enlarged if the contact reaches its
+//! edge, and refitted once if the contact fills too little of it.
+
+use crate::case::{Body, Case, Elastic};
+use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::layer::LayerOperator;
+use crate::solution::Solution;
+
+/// Margin of the window around the estimated contact.
+const MARGIN: f64 = 1.25;
+/// Enlargement when the contact reaches the window's edge.
+const ENLARGE: f64 = 1.6;
+/// A refit is done when it makes the cells at least this much smaller.
+const REFIT_GAIN: f64 = 0.8;
+/// Fewest loaded cells across the contact for a meaningful solution.
+const MIN_CELLS_ACROSS: usize = 3;
+
+/// Size estimates of the contact of a case.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ContactEstimate {
+    /// Radius of the symmetric (elastic or Winkler) contact.
+    pub symmetric_radius: f64,
+    /// Extent ahead of the initial contact point (>= symmetric radius).
+    pub leading_extent: f64,
+    /// Effective plane-strain modulus of the body.
+    pub modulus: f64,
+}
+
+fn softest(body: &Body) -> f64 {
+    let e = |m: Elastic| m.plane_strain_modulus();
+    match *body {
+        Body::Homogeneous(m) => e(m),
+        Body::Coated {
+            coating, substrate, ..
+        } => e(coating).min(e(substrate)),
+    }
+}
+
+impl ContactEstimate {
+    pub fn of(case: &Case) -> Self {
+        let r = case.slider.equivalent_radius();
+        let q = case.loading.normal_load;
+        let modulus = softest(&case.body);
+        let hertz = (3.0 * q * r / (4.0 * modulus)).cbrt();
+        let (mut symmetric, mut leading) = (hertz, hertz);
+        if let Some(layer) = &case.layer {
+            let c0 = layer.zero_pressure_compliance();
+            let winkler = (4.0 * r * c0 * q / std::f64::consts::PI).powf(0.25);
+            symmetric = hertz.max(winkler);
+            let vt = case.velocity() * layer.relaxation_time;
+            // Creep matters when V T is small against the contact; the creep length
+            // estimate is then the larger one.
+            let creep = if vt.is_finite() {
+                (3.0 * q * c0 * r / (2.0 * vt)).cbrt()
+            } else {
+                0.0
+            };
+            leading = symmetric.max(creep);
+        }
+        ContactEstimate {
+            symmetric_radius: symmetric,
+            leading_extent: leading,
+            modulus,
+        }
+    }
+}
+
+/// The first window: the case's fixed one, or one around the estimated contact.
+pub(crate) fn initial_window(case: &Case) -> Result<Grid> {
+    let [nx, ny] = case.grid.cells;
+    if let Some([wx, _]) = case.grid.half_width {
+        let centre = case.grid.centre.unwrap_or([0.0, 0.0]);
+        return Grid::centred(nx, ny, 2.0 * wx / nx as f64, centre);
+    }
+    let e = ContactEstimate::of(case);
+    let x_lo = -MARGIN * e.symmetric_radius;
+    let x_hi = MARGIN * e.leading_extent;
+    let half_y = MARGIN * e.leading_extent;
+    fit(nx, ny, [x_lo, x_hi], [-half_y, half_y])
+}
+
+/// The grid of `nx x ny` square cells that holds the box `xs x ys`, centred on it.
+fn fit(nx: usize, ny: usize, xs: [f64; 2], ys: [f64; 2]) -> Result<Grid> {
+    let cell = ((xs[1] - xs[0]) / nx as f64).max((ys[1] - ys[0]) / ny as f64);
+    if !(cell.is_finite() && cell > 0.0) {
+        return Err(Error::invalid(
+            "grid",
+            cell,
+            "a window of finite positive size (check the load and moduli)",
+        ));
+    }
+    Grid::centred(nx, ny, cell, [(xs[0] + xs[1]) / 2.0, (ys[0] + ys[1]) / 2.0])
+}
+
+/// Index ranges `[i_min, i_max] x [j_min, j_max]` of the loaded cells.
+fn loaded_box(grid: &Grid, p: &[f64]) -> Option<[usize; 4]> {
+    let mut b = [usize::MAX, 0, usize::MAX, 0];
+    let mut any = false;
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            if p[grid.index(i, j)] > 0.0 {
+                any = true;
+                b = [b[0].min(i), b[1].max(i), b[2].min(j), b[3].max(j)];
+            }
+        }
+    }
+    any.then_some(b)
+}
+
+/// The next window to try, or `None` when the solution on `grid` is acceptable.
+pub(crate) fn next_window(grid: &Grid, p: &[f64], touches: bool) -> Option<Grid> {
+    let b = loaded_box(grid, p)?;
+    let h = grid.cell;
+    let xs = [grid.x(b[0]) - 0.5 * h, grid.x(b[1]) + 0.5 * h];
+    let ys = [grid.y(b[2]) - 0.5 * h, grid.y(b[3]) + 0.5 * h];
+    let centre = [(xs[0] + xs[1]) / 2.0, (ys[0] + ys[1]) / 2.0];
+    if touches {
+        return Grid::centred(grid.nx, grid.ny, ENLARGE * h, centre).ok();
+    }
+    // Cells that would hold the contact with the margin and two spare cells a side.
+    let (lx, ly) = (xs[1] - xs[0], ys[1] - ys[0]);
+    let cell = (lx * 1.1 / (grid.nx as f64 - 4.0)).max(ly * 1.1 / (grid.ny as f64 - 4.0));
+    if cell < REFIT_GAIN * h {
+        Grid::centred(grid.nx, grid.ny, cell, centre).ok()
+    } else {
+        None
+    }
+}
+
+/// Rejects a fixed window whose cells are too coarse for the contact.
+pub(crate) fn check_resolution(solution: &Solution) -> Result<()> {
+    let g = &solution.grid;
+    if let Some(b) = loaded_box(g, &solution.pressure) {
+        let across = (b[1] - b[0] + 1).min(b[3] - b[2] + 1);
+        if across < MIN_CELLS_ACROSS {
+            return Err(Error::invalid(
+                "grid.half_width",
+                format!("[{:e}, {:e}]", g.half_widths()[0], g.half_widths()[1]),
+                &format!(
+                    "a window in which the contact spans at least {MIN_CELLS_ACROSS} cells \
+                     (it spans {across}); use a smaller window or more cells"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Bilinear interpolation of a cell field from one grid to another (zero outside).
+pub(crate) fn interpolate(old: &Grid, field: &[f64], new: &Grid) -> Vec<f64> {
+    let mut out = vec![0.0; new.len()];
+    for j in 0..new.ny {
+        let v = (new.y(j) - old.y0) / old.cell - 0.5;
+        for i in 0..new.nx {
+            let u = (new.x(i) - old.x0) / old.cell - 0.5;
+            if u < 0.0 || v < 0.0 || u > (old.nx - 1) as f64 || v > (old.ny - 1) as f64 {
+                continue;
+            }
+            let (i0, j0) = ((u as usize).min(old.nx - 2), (v as usize).min(old.ny - 2));
+            let (s, t) = (u - i0 as f64, v - j0 as f64);
+            let at = |a: usize, b: usize| field[old.index(a, b)];
+            out[new.index(i, j)] = (1.0 - t) * ((1.0 - s) * at(i0, j0) + s * at(i0 + 1, j0))
+                + t * ((1.0 - s) * at(i0, j0 + 1) + s * at(i0 + 1, j0 + 1));
+        }
+    }
+    out
+}
+
+/// Hertz-shaped start for conjugate gradients: `sqrt(1 - f / f_a)` inside the
+/// estimated contact, where `f_a` is the shape's height at its edge.
+pub(crate) fn hertz_like_guess(grid: &Grid, f: &[f64], e: &ContactEstimate) -> Vec<f64> {
+    let mut fa = f64::INFINITY;
+    // Height of the shape at the estimated radius along x, from the sampled f.
+    for i in 0..grid.nx {
+        let x = grid.x(i);
+        if x >= e.symmetric_radius {
+            let j = (0..grid.ny)
+                .min_by(|&a, &b| grid.y(a).abs().total_cmp(&grid.y(b).abs()))
+                .unwrap_or(0);
+            fa = f[grid.index(i, j)];
+            break;
+        }
+    }
+    let fmin = f.iter().copied().fold(f64::INFINITY, f64::min);
+    let mut p: Vec<f64> = f
+        .iter()
+        .map(|&v| (1.0 - (v - fmin) / (fa - fmin)).max(0.0).sqrt())
+        .collect();
+    if p.iter().filter(|&&v| v > 0.0).count() < 4 {
+        p.iter_mut().for_each(|v| *v = 1.0);
+    }
+    p
+}
+
+/// Start for the layered solver: the contact of a rigid-like bed where each cell has
+/// the body's effective compliance `pi a / (2 E*)` (Hertz centre displacement over
+/// peak pressure) plus the linear layer of compliance C0 with its creep, solved row
+/// by row from the leading edge; D is found by bisection on the load.
+pub(crate) fn rigid_base_guess(
+    grid: &Grid,
+    f: &[f64],
+    layer: &LayerOperator,
+    e: &ContactEstimate,
+    load: f64,
+) -> Vec<f64> {
+    let c0 = layer.layer().zero_pressure_compliance();
+    let kc = layer.creep_per_cell();
+    let body = std::f64::consts::PI * e.symmetric_radius / (2.0 * e.modulus);
+    let diag = body + c0 * (1.0 + 0.5 * kc);
+    let nx = grid.nx;
+    let mut p = vec![0.0; f.len()];
+    let sweep = |d: f64, p: &mut [f64]| -> f64 {
+        let mut total = 0.0;
+        for (frow, prow) in f.chunks_exact(nx).zip(p.chunks_exact_mut(nx)) {
+            let mut upstream = 0.0;
+            for i in (0..nx).rev() {
+                let v = ((d - frow[i] - kc * c0 * upstream) / diag).max(0.0);
+                prow[i] = v;
+                upstream += v;
+                total += v;
+            }
+        }
+        total * grid.cell_area()
+    };
+    let fmin = f.iter().copied().fold(f64::INFINITY, f64::min);
+    let (mut lo, mut hi) = (fmin, fmin + diag * load / grid.cell_area());
+    // Expand until the bed carries the load (always reached: load grows without bound).
+    for _ in 0..200 {
+        if sweep(hi, &mut p) >= load {
+            break;
+        }
+        let w = hi - lo;
+        lo = hi;
+        hi += 2.0 * w;
+    }
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if sweep(mid, &mut p) < load {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    sweep(hi, &mut p);
+    p
+}

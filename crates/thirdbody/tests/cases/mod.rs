@@ -1,0 +1,81 @@
+//! Case builders shared by the integration tests: the paper's dimensionless cases
+//! (R = E2 = T = 1, section 4) and Hertz.
+#![allow(dead_code)]
+
+use thirdbody::layer::Table;
+use thirdbody::*;
+
+/// The paper's sphere on a homogeneous half-space (nu = 0.3) under Q'.
+pub fn sphere(load: f64, cells: usize) -> Case {
+    Case {
+        slider: Slider::Sphere { radius: 1.0 },
+        body: Body::Homogeneous(Elastic {
+            young: 1.0,
+            poisson: 0.3,
+        }),
+        layer: None,
+        loading: Loading {
+            normal_load: load,
+            velocity: None,
+        },
+        grid: GridSpec {
+            cells: [cells, cells],
+            half_width: None,
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    }
+}
+
+/// A Maxwell layer of compliance C0 with a law and an integration.
+pub fn layered(
+    load: f64,
+    cells: usize,
+    c0: f64,
+    velocity: f64,
+    law: ComplianceLaw,
+    integration: Integration,
+) -> Case {
+    let mut c = sphere(load, cells);
+    c.layer = Some(Layer {
+        compliance: c0,
+        relaxation_time: 1.0,
+        law,
+        integration,
+    });
+    c.loading.velocity = Some(velocity);
+    c
+}
+
+/// The paper's sigmoid law (eq. 11).
+pub fn sigmoid(delta: f64, p0: f64) -> ComplianceLaw {
+    ComplianceLaw::Sigmoid { delta, p0 }
+}
+
+/// A tabulated law that stiffens with pressure.
+pub fn stiffening_table() -> ComplianceLaw {
+    ComplianceLaw::Table(
+        Table::new(vec![0.0, 1e-3, 2e-3, 5e-3], vec![0.02, 0.016, 0.012, 0.01]).unwrap(),
+    )
+}
+
+/// Fixes the window to a square of half width `w` centred at `centre`.
+pub fn fixed_window(mut c: Case, w: f64, centre: [f64; 2]) -> Case {
+    c.grid.half_width = Some([w, w]);
+    c.grid.centre = Some(centre);
+    c
+}
+
+/// Solves with a tolerance.
+pub fn solve_to(case: &Case, tolerance: f64) -> Solution {
+    let params = SolverParams {
+        tolerance,
+        ..SolverParams::default()
+    };
+    solve(case, &params).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Relative difference of two numbers.
+pub fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
