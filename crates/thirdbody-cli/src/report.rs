@@ -9,9 +9,9 @@ use thirdbody::{Case, Solution, Units};
 pub fn human_summary(case: &Case, solution: &Solution, solve_seconds: f64) -> String {
     let s = solution.summary();
     let info = &solution.info;
-    let (len, force, stress) = match case.units {
-        Units::Dimensionless => ("", "", ""),
-        Units::Si => (" m", " N", " Pa"),
+    let (len, area, force, stress, moment) = match case.units {
+        Units::Dimensionless => ("", "", "", "", ""),
+        Units::Si => (" m", " m^2", " N", " Pa", " N m"),
     };
     let method = serde_json::to_value(info.method)
         .ok()
@@ -38,17 +38,18 @@ pub fn human_summary(case: &Case, solution: &Solution, solve_seconds: f64) -> St
     );
     let _ = writeln!(
         t,
-        "  max pressure  {:.4e}{stress} at x = {:.4e}, y = {:.4e}",
+        "  max pressure  {:.4e}{stress} at x = {:.4e}{len}, y = {:.4e}{len}",
         s.max_pressure, s.max_pressure_x, s.max_pressure_y
     );
     let _ = writeln!(
         t,
-        "  contact       area {:.4e}, x from {:.4e} to {:.4e}, y from {:.4e} to {:.4e}",
+        "  contact       area {:.4e}{area}, x from {:.4e} to {:.4e}{len}, y from {:.4e} to \
+         {:.4e}{len}",
         s.contact_area, s.contact_x_min, s.contact_x_max, s.contact_y_min, s.contact_y_max
     );
     let _ = write!(
         t,
-        "  friction      mu = {:.4e}, Q_T = {:.4e}{force}, moment M = {:.4e}",
+        "  friction      mu = {:.4e}, Q_T = {:.4e}{force}, moment M = {:.4e}{moment}",
         s.friction_coefficient, s.tangential_force, s.moment
     );
     t

@@ -353,10 +353,12 @@ fn sphere_without_layer_writes_every_output_and_matches_hertz() {
 
 #[test]
 fn height_map_of_a_paraboloid_solves_like_the_sphere() {
-    // The sphere's shape sampled into a CSV map (101 x 101 samples, spacing 0.002,
-    // half extent 0.1 = 6.6 Hertz radii): bilinear interpolation errs by at most
-    // h^2 / (8 R) = 5e-7, 0.2% of D, so both solves must agree to about that.
-    let (n, h) = (101, 0.002);
+    // The sphere's shape sampled into a CSV map (201 x 201 samples, spacing
+    // h = 0.001, half extent 0.1 = 6.6 Hertz radii). Bilinear interpolation errs by
+    // at most e = h^2 / (8 R) = 1.25e-7 in height (0.06% of D) with slope kinks at
+    // the sample lines, which perturb the pressure locally by about
+    // E* e / h = E* h / 8 = 1.4e-4 (1.3% of p_max); the solves must agree within that.
+    let (n, h) = (201, 0.001);
     let mut csv = String::new();
     for j in 0..n {
         let y = (j as f64 + 0.5 - n as f64 / 2.0) * h;
@@ -371,7 +373,7 @@ fn height_map_of_a_paraboloid_solves_like_the_sphere() {
     }
     let case = SPHERE.replace(
         "shape = \"sphere\"\nradius = 1.0",
-        "shape = \"height_map\"\nfile = \"ball.csv\"\ncell_size = 0.002",
+        "shape = \"height_map\"\nfile = \"ball.csv\"\ncell_size = 0.001",
     );
     let map = solve(&case, &[("ball.csv", &csv)], &["--quiet"]);
     assert_eq!(map.code(), Some(0), "stderr: {}", map.stderr());
@@ -380,8 +382,8 @@ fn height_map_of_a_paraboloid_solves_like_the_sphere() {
     let (a, b) = (read_summary(&map.out_dir), read_summary(&sphere.out_dir));
     // The area counts cells, so one cell in ~200 flipping at the edge is 0.5%.
     for (key, tol) in [
-        ("penetration", 0.01),
-        ("max_pressure", 0.01),
+        ("penetration", 0.002),
+        ("max_pressure", 0.02),
         ("contact_area", 0.02),
     ] {
         let (va, vb) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());
