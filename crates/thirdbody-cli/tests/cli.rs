@@ -428,3 +428,33 @@ fn plots_are_written() {
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{name} is not a PNG");
     }
 }
+
+#[test]
+fn solver_failures_exit_with_1_and_leave_nothing() {
+    // A fixed window of half width 0.005 cannot hold the Hertz contact of radius
+    // 0.015: the contact reaches the edge.
+    let case = SPHERE.replace(
+        "cells = [32, 32]",
+        "cells = [32, 32]\nhalf_width = [0.005, 0.005]",
+    );
+    let run = solve(&case, &[], &[]);
+    assert_eq!(run.code(), Some(1), "stderr: {}", run.stderr());
+    assert_eq!(run.stderr().lines().count(), 1, "{}", run.stderr());
+    assert!(
+        run.stderr().contains("edge of the window"),
+        "{}",
+        run.stderr()
+    );
+    assert_no_output(&run.out_dir);
+    // One iteration is not enough to converge.
+    let case = format!("{SPHERE}\n[solver]\nmax_iterations = 1\n");
+    let run = solve(&case, &[], &[]);
+    assert_eq!(run.code(), Some(1), "stderr: {}", run.stderr());
+    assert_eq!(run.stderr().lines().count(), 1, "{}", run.stderr());
+    assert!(
+        run.stderr().contains("did not converge"),
+        "{}",
+        run.stderr()
+    );
+    assert_no_output(&run.out_dir);
+}
