@@ -23,6 +23,34 @@ const RESTART: usize = 40;
 /// Most GMRES products per Newton step.
 const MAX_LINEAR_ITERATIONS: usize = 400;
 
+/// Smallest damping factor of a Newton step.
+const MIN_STEP: f64 = 1.0 / 64.0;
+
+/// Computes the body and layer displacements and the gap at `(p, D)`; returns the
+/// merit `sum min(p, c g)^2`.
+#[allow(clippy::too_many_arguments)]
+fn evaluate(
+    op: &mut dyn InfluenceOperator,
+    layer: &LayerOperator,
+    f: &[f64],
+    p: &[f64],
+    approach: f64,
+    stiffness: f64,
+    wb: &mut [f64],
+    wl: &mut [f64],
+    g: &mut [f64],
+) -> f64 {
+    op.apply(p, wb);
+    layer.maxwell_row_sweep(p, wl);
+    let mut merit = 0.0;
+    for k in 0..f.len() {
+        g[k] = wb[k] + wl[k] + f[k] - approach;
+        let m = p[k].min(stiffness * g[k]);
+        merit += m * m;
+    }
+    merit
+}
+
 /// Runs the semi-smooth Newton iteration from `p` (overwritten), returning D.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn semismooth_newton(
@@ -67,13 +95,10 @@ pub(crate) fn semismooth_newton(
     let mut linear_iterations = 0;
     let mut last_residual = f64::INFINITY;
 
+    let mut trial = vec![0.0; n];
+    let mut merit = evaluate(op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g);
     for iteration in 1..=params.max_iterations {
-        if iteration > 1 {
-            op.apply(p, &mut wb);
-            layer.maxwell_row_sweep(p, &mut wl);
-        }
         for k in 0..n {
-            g[k] = wb[k] + wl[k] + f[k] - approach;
             jp[k] = wb[k] + wl[k];
         }
         let residual = relative_complementarity_residual(p, &g, &jp);
@@ -172,11 +197,28 @@ pub(crate) fn semismooth_newton(
         if !x.iter().all(|v| v.is_finite()) {
             break;
         }
-        p.fill(0.0);
+        // Newton point: x on the contact set, zero off it.
+        full_in.fill(0.0);
         for (a, &k) in indices.iter().enumerate() {
-            p[k] = x[a];
+            full_in[k] = x[a];
         }
-        approach = x[m];
+        // Backtracking on the merit ||min(p, c g)||^2: full steps where they help,
+        // shorter ones where the creep's long reach makes the linearisation poor.
+        let mut alpha = 1.0;
+        loop {
+            for k in 0..n {
+                trial[k] = p[k] + alpha * (full_in[k] - p[k]);
+            }
+            let d = approach + alpha * (x[m] - approach);
+            let m_trial = evaluate(op, layer, f, &trial, d, stiffness, &mut wb, &mut wl, &mut g);
+            if m_trial <= (1.0 - 1e-4 * alpha) * merit || alpha <= MIN_STEP {
+                p.copy_from_slice(&trial);
+                approach = d;
+                merit = m_trial;
+                break;
+            }
+            alpha *= 0.5;
+        }
     }
     Err(Error::NoConvergence {
         iterations: params.max_iterations,

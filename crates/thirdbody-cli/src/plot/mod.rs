@@ -1,0 +1,285 @@
+//! Figures for reports and papers: colour maps of surface fields (pressure, gap, layer
+//! creep) with the contact boundary, colour maps of vertical sections (subsurface
+//! stresses) with contour lines, and line plots of sweeps and profiles.
+//!
+//! Every figure has a title, labelled axes and, for maps, a labelled colour bar; maps of
+//! the surface keep equal scales on x and y. The format follows the file extension:
+//! `.png` (raster, RGB) or `.svg` (vector; the colour raster is embedded as PNG). Text
+//! uses the embedded DejaVu Sans, so no system font is needed. Files are written
+//! atomically: rendered to `<stem>.tmp-<pid>.<ext>` next to the target, then renamed.
+//!
+//! Conventions (design.md §1): grid fields are row-major with rows along y,
+//! `field[j * nx + i]` at `x = x0 + (i + 1/2) h`, `y = y0 + (j + 1/2) h`; sections are
+//! row-major with rows along depth z, drawn increasing downward (z points into the body).
+//!
+//! Input with NaN or infinite values, empty series or mismatched lengths is refused with
+//! an error naming the offending argument, and no file is left behind.
+
+mod colour;
+mod contours;
+mod line;
+mod map;
+mod output;
+#[cfg(test)]
+mod tests;
+
+use std::path::Path;
+
+use anyhow::{bail, Result};
+
+use colour::{min_max, ColourScale};
+use contours::{contour_lines, Axis};
+use map::{Corner, MapFigure, Marker};
+
+/// One curve of a line plot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend entry; an empty label leaves the series out of the legend.
+    pub label: String,
+    /// Abscissae.
+    pub x: Vec<f64>,
+    /// Ordinates, same length as `x`.
+    pub y: Vec<f64>,
+    /// Draw dashed instead of solid.
+    pub dashed: bool,
+}
+
+/// Refuses non-finite entries, naming the argument and the first bad index.
+fn check_finite(what: &str, values: &[f64]) -> Result<()> {
+    if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        bail!("{what}: entry {k} is {v}; every value must be finite (no NaN or infinity)");
+    }
+    Ok(())
+}
+
+/// Refuses a length other than `expected`.
+fn check_len(what: &str, len: usize, expected: usize, why: &str) -> Result<()> {
+    if len != expected {
+        bail!("{what} has {len} values; expected {expected} ({why})");
+    }
+    Ok(())
+}
+
+/// Refuses axis positions that are not finite and strictly increasing (at least two).
+fn check_axis(what: &str, values: &[f64]) -> Result<()> {
+    if values.len() < 2 {
+        bail!("{what} has {} values; at least 2 are needed", values.len());
+    }
+    check_finite(what, values)?;
+    if let Some(k) = values.windows(2).position(|w| w[1] <= w[0]) {
+        bail!(
+            "{what} must be strictly increasing, but entry {} ({}) <= entry {k} ({})",
+            k + 1,
+            values[k + 1],
+            values[k]
+        );
+    }
+    Ok(())
+}
+
+/// Colour map of a grid field (`thirdbody::Grid`: `nx`, `ny`, `cell`, `x0`, `y0`; `field`
+/// row-major, rows along y, `field[j*nx+i]` at `x = x0+(i+0.5)cell`,
+/// `y = y0+(j+0.5)cell`) with a colour bar and its label; `outline`: also draw the
+/// contour line where that field (e.g. pressure) becomes > 0 (the contact boundary,
+/// drawn on the cell edges between cells with value > 0 and cells without). Equal aspect
+/// ratio of x and y.
+#[allow(clippy::too_many_arguments)]
+pub fn field_map(
+    path: &Path,
+    grid: &thirdbody::Grid,
+    field: &[f64],
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    colour_label: &str,
+    outline: Option<&[f64]>,
+) -> Result<()> {
+    let (nx, ny) = (grid.nx, grid.ny);
+    if nx < 2 || ny < 2 || !(grid.cell.is_finite() && grid.cell > 0.0) {
+        bail!(
+            "field map grid of {nx} x {ny} cells of side {}: needs at least 2 x 2 cells of \
+             finite positive side",
+            grid.cell
+        );
+    }
+    if !(grid.x0.is_finite() && grid.y0.is_finite()) {
+        bail!(
+            "field map grid origin ({}, {}) must be finite",
+            grid.x0,
+            grid.y0
+        );
+    }
+    check_len("field map field", field.len(), nx * ny, "grid nx * ny")?;
+    check_finite("field map field", field)?;
+    let cols = Axis::uniform(nx, grid.x0, grid.cell);
+    let rows = Axis::uniform(ny, grid.y0, grid.cell);
+    let legend_corner = match outline {
+        Some(o) if o.len() == nx * ny => Corner::emptiest(nx, ny, |k| o[k] > 0.0),
+        _ => Corner::UpperRight,
+    };
+    let outline = match outline {
+        Some(o) => {
+            check_len("field map outline", o.len(), nx * ny, "grid nx * ny")?;
+            check_finite("field map outline", o)?;
+            // Cells with a value > 0 are inside; the unsmoothed contour at a threshold
+            // between 0 and the smallest positive value lies on the cell edges.
+            let smallest_positive = o
+                .iter()
+                .copied()
+                .filter(|&v| v > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            let lines = if smallest_positive.is_finite() {
+                contour_lines(o, &cols, &rows, &[0.5 * smallest_positive], false)?
+            } else {
+                Vec::new()
+            };
+            Some((lines, "contact boundary"))
+        }
+        None => None,
+    };
+    let figure = MapFigure {
+        title,
+        x_label,
+        y_label,
+        colour_label,
+        scale: ColourScale::for_values(field),
+        cols,
+        rows,
+        values: field.to_vec(),
+        y_negated: false,
+        equal_aspect: true,
+        lines: Vec::new(),
+        outline,
+        legend_corner,
+        marker: None,
+    };
+    output::write_figure(path, &figure)
+}
+
+/// Line plot of several series with a legend (skipped if a single series has an empty
+/// label; series with empty labels are left out of it); `log_x`: logarithmic x axis (all
+/// x must then be > 0). Series of at most 30 points also mark each point.
+pub fn line_plot(
+    path: &Path,
+    series: &[Series],
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    log_x: bool,
+) -> Result<()> {
+    if series.is_empty() {
+        bail!("line plot '{title}': no series to draw");
+    }
+    for (k, s) in series.iter().enumerate() {
+        let name = format!("line plot series {k} ('{}')", s.label);
+        if s.x.is_empty() {
+            bail!("{name} is empty");
+        }
+        check_len(&format!("{name} y"), s.y.len(), s.x.len(), "one y per x")?;
+        check_finite(&format!("{name} x"), &s.x)?;
+        check_finite(&format!("{name} y"), &s.y)?;
+        if log_x {
+            if let Some(v) = s.x.iter().find(|&&v| v <= 0.0) {
+                bail!("{name} has x = {v}; a logarithmic x axis needs every x > 0");
+            }
+        }
+    }
+    let figure = line::LineFigure {
+        series,
+        title,
+        x_label,
+        y_label,
+        log_x,
+    };
+    output::write_figure(path, &figure)
+}
+
+/// Colour map of a vertical section (e.g. a stress component in the XZ plane): `xs`
+/// (len nx), `zs` (len nz, depth, drawn increasing DOWNWARD), `field[k*nx+i]` at
+/// `(xs[i], zs[k])`, both strictly increasing; colour bar; `contours` evenly spaced
+/// contour lines (levels dividing the field's range into `contours + 1` equal parts; 0
+/// for none), and the extreme (the value of largest magnitude) marked by a small cross
+/// labelled with its value and position. Diverging colour map when the field changes
+/// sign, sequential otherwise. Equal scales on x and z unless one extent is more than five
+/// times the other.
+#[allow(clippy::too_many_arguments)]
+pub fn section_map(
+    path: &Path,
+    xs: &[f64],
+    zs: &[f64],
+    field: &[f64],
+    title: &str,
+    x_label: &str,
+    z_label: &str,
+    colour_label: &str,
+    contours: usize,
+) -> Result<()> {
+    check_axis("section xs", xs)?;
+    check_axis("section zs", zs)?;
+    let (nx, nz) = (xs.len(), zs.len());
+    check_len("section field", field.len(), nx * nz, "xs.len() * zs.len()")?;
+    check_finite("section field", field)?;
+
+    // Plot y = -z, rows upward: row r holds depth index k = nz - 1 - r.
+    let cols = Axis::from_centres(xs);
+    let rows = Axis::from_centres(zs).negated();
+    let values: Vec<f64> = (0..nz)
+        .flat_map(|r| {
+            let k = nz - 1 - r;
+            field[k * nx..(k + 1) * nx].iter().copied()
+        })
+        .collect();
+
+    let (lo, hi) = min_max(field);
+    let lines = if contours > 0 && hi > lo {
+        let step = (hi - lo) / (contours + 1) as f64;
+        let levels: Vec<f64> = (1..=contours).map(|m| lo + m as f64 * step).collect();
+        contour_lines(&values, &cols, &rows, &levels, true)?
+    } else {
+        Vec::new()
+    };
+
+    let (k_max, &extreme) = field
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .ok_or_else(|| anyhow::anyhow!("section field is empty"))?;
+    let (x_max, z_max) = (xs[k_max % nx], zs[k_max / nx]);
+    let marker = (extreme != 0.0).then(|| Marker {
+        at: (x_max, -z_max),
+        text: format!("{} at ({}, {})", short(extreme), short(x_max), short(z_max)),
+    });
+
+    let ratio = (rows.last_edge - rows.first_edge) / (cols.last_edge - cols.first_edge);
+    let figure = MapFigure {
+        title,
+        x_label,
+        y_label: z_label,
+        colour_label,
+        scale: ColourScale::for_values(field),
+        cols,
+        rows,
+        values,
+        y_negated: true,
+        equal_aspect: (0.2..=5.0).contains(&ratio),
+        lines,
+        outline: None,
+        legend_corner: Corner::UpperRight,
+        marker,
+    };
+    output::write_figure(path, &figure)
+}
+
+/// A number with 3 significant digits for annotations.
+fn short(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let magnitude = v.abs().log10().floor() as i32;
+    if (-3..5).contains(&magnitude) {
+        let decimals = (2 - magnitude).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.2e}")
+    }
+}

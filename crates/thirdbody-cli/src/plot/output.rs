@@ -1,0 +1,150 @@
+//! Writing a figure to disk: the embedded font, the choice of backend from the file
+//! extension (PNG raster or SVG vector) and the atomic write (render to a temporary file
+//! in the same folder, then rename; the temporary is removed on error).
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use anyhow::{anyhow, bail, Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// DejaVu Sans (Bitstream Vera licence), embedded so that no system font is needed.
+static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+
+/// Font family every text of the figures uses; the embedded font is registered under it.
+pub(crate) const FAMILY: &str = "sans-serif";
+
+/// Registers the embedded font with plotters exactly once; later calls return the first
+/// outcome.
+fn register_embedded_font() -> Result<()> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        plotters::style::register_font(FAMILY, FontStyle::Normal, FONT_BYTES).is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        bail!("the embedded font DejaVuSans.ttf could not be loaded")
+    }
+}
+
+/// Something that draws itself on a drawing area of any plotters backend.
+pub(crate) trait Figure {
+    /// Canvas size in pixels (width, height).
+    fn size(&self) -> (u32, u32);
+    /// Draws the whole figure on `root` (already filled white).
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>;
+}
+
+/// Converts a plotters drawing error into an anyhow error.
+pub(crate) fn draw_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
+    anyhow!("drawing failed: {e}")
+}
+
+#[derive(Clone, Copy)]
+enum Format {
+    Png,
+    Svg,
+}
+
+/// The temporary file next to `path`: `<stem>.tmp-<pid>.<ext>` (the extension is kept so
+/// the PNG encoder still recognises the format).
+fn temporary_path(path: &Path, ext: &str) -> Result<PathBuf> {
+    let stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .ok_or_else(|| anyhow!("plot path {} has no usable file name", path.display()))?;
+    Ok(path.with_file_name(format!("{stem}.tmp-{}.{ext}", std::process::id())))
+}
+
+/// Renders `figure` to `path` (PNG or SVG by extension, case-insensitive) atomically.
+pub(crate) fn write_figure(path: &Path, figure: &impl Figure) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let format = match ext.as_deref() {
+        Some("png") => Format::Png,
+        Some("svg") => Format::Svg,
+        _ => bail!(
+            "plot file {}: unknown extension, allowed: .png or .svg",
+            path.display()
+        ),
+    };
+    register_embedded_font()?;
+    let tmp = temporary_path(path, ext.as_deref().unwrap_or_default())?;
+    let result = render(&tmp, format, figure).and_then(|()| {
+        std::fs::rename(&tmp, path)
+            .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+    });
+    if result.is_err() {
+        // The backend may have written (part of) the file on drop; never leave it behind.
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("writing plot {}", path.display()))
+}
+
+fn render(tmp: &Path, format: Format, figure: &impl Figure) -> Result<()> {
+    let size = figure.size();
+    match format {
+        Format::Png => {
+            let root = BitMapBackend::new(tmp, size).into_drawing_area();
+            draw_and_present(&root, figure)
+        }
+        Format::Svg => {
+            {
+                let root = SVGBackend::new(tmp, size).into_drawing_area();
+                draw_and_present(&root, figure)?;
+            }
+            fix_svg_data_uri(tmp)
+        }
+    }
+}
+
+/// plotters 0.3.7 embeds rasters as `data:png;base64,...`, which is not a valid media
+/// type (RFC 2397 wants `image/png`) and some SVG readers refuse it: correct it in place.
+fn fix_svg_data_uri(svg: &Path) -> Result<()> {
+    let text =
+        std::fs::read_to_string(svg).with_context(|| format!("reading back {}", svg.display()))?;
+    if text.contains("\"data:png;base64,") {
+        let fixed = text.replace("\"data:png;base64,", "\"data:image/png;base64,");
+        std::fs::write(svg, fixed).with_context(|| format!("rewriting {}", svg.display()))?;
+    }
+    Ok(())
+}
+
+fn draw_and_present<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    figure: &impl Figure,
+) -> Result<()> {
+    root.fill(&WHITE).map_err(draw_err)?;
+    figure.draw(root)?;
+    root.present().map_err(draw_err)
+}
+
+/// Text style of the given pixel size in the embedded family.
+pub(crate) fn text(size: f64) -> TextStyle<'static> {
+    (FAMILY, size).into_font().color(&BLACK)
+}
+
+/// Draws `title` centred in `area` (a strip at the top of the figure).
+pub(crate) fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+) -> Result<()> {
+    let (w, h) = area.dim_in_pixel();
+    let style = text(TITLE_SIZE).pos(plotters::style::text_anchor::Pos::new(
+        plotters::style::text_anchor::HPos::Center,
+        plotters::style::text_anchor::VPos::Center,
+    ));
+    area.draw_text(title, &style, (w as i32 / 2, h as i32 / 2))
+        .map_err(draw_err)
+}
+
+/// Pixel sizes of the texts.
+pub(crate) const TITLE_SIZE: f64 = 24.0;
+/// Tick labels.
+pub(crate) const TICK_SIZE: f64 = 17.0;
+/// Axis descriptions and legend entries.
+pub(crate) const LABEL_SIZE: f64 = 20.0;
