@@ -1,1 +1,155 @@
-fn main() {}
+//! `thirdbody`: the command line of the thirdbody contact solver.
+//!
+//! `thirdbody solve CASE.toml --out DIR` reads a case file (docs/case-file.md),
+//! solves it, writes the outputs into DIR (docs/outputs.md) and prints a short
+//! summary. Exit codes: 0 success; 2 bad input (the case or a height map), with
+//! one line `error: <message>` on stderr that names the field and what is
+//! allowed; 1 solver failure or I/O error.
+
+mod heightmap;
+mod outputs;
+mod plot;
+mod progress;
+mod report;
+mod staging;
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::{Args, Parser, Subcommand};
+use thirdbody::case_file::{parse_case_file, CaseFile};
+use thirdbody::Parallelism;
+
+#[derive(Parser)]
+#[command(
+    name = "thirdbody",
+    version,
+    about = "Sliding contact through a nonlinear viscoelastic third-body layer"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve one case file and write its outputs.
+    Solve(SolveArgs),
+}
+
+#[derive(Args)]
+struct SolveArgs {
+    /// The case file (TOML, see docs/case-file.md).
+    case: PathBuf,
+    /// Output folder; created after a successful solve.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long)]
+    quiet: bool,
+    /// Threads for the solve's FFTs (default: all cores).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    threads: Option<u16>,
+}
+
+/// A bad input found by the command line itself (unreadable case file, bad
+/// arguments); exits with code 2 like the library's input errors.
+#[derive(Debug)]
+struct BadInput(String);
+
+impl std::fmt::Display for BadInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for BadInput {}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let message = format!("{e:#}").replace('\n', " ");
+            eprintln!("error: {message}");
+            ExitCode::from(exit_code(&e))
+        }
+    }
+}
+
+/// 2 for bad input, 1 for everything else.
+fn exit_code(e: &anyhow::Error) -> u8 {
+    for cause in e.chain() {
+        if cause.is::<BadInput>() {
+            return 2;
+        }
+        if let Some(t) = cause.downcast_ref::<thirdbody::Error>() {
+            return match t {
+                thirdbody::Error::InvalidValue { .. }
+                | thirdbody::Error::MissingField { .. }
+                | thirdbody::Error::UnusedField { .. }
+                | thirdbody::Error::Parse(_) => 2,
+                _ => 1,
+            };
+        }
+    }
+    1
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Solve(args) => solve(&args),
+    }
+}
+
+/// Reads and validates a case file; height maps are read relative to its folder.
+fn read_case(path: &Path) -> Result<CaseFile> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| BadInput(format!("cannot read the case file {}: {e}", path.display())))?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let file = parse_case_file(&text, &mut |file, cell_size| {
+        heightmap::load(base, file, cell_size)
+    })?;
+    Ok(file)
+}
+
+fn solve(args: &SolveArgs) -> Result<()> {
+    let CaseFile { case, mut solver } = read_case(&args.case)?;
+    if args.out.exists() && !args.out.is_dir() {
+        return Err(BadInput(format!(
+            "--out {} exists and is not a folder",
+            args.out.display()
+        ))
+        .into());
+    }
+    match args.threads {
+        Some(1) => solver.parallelism = Parallelism::Sequential,
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n.into())
+            .build_global()
+            .context("cannot start the thread pool")?,
+        None => {}
+    }
+
+    let mut spinner = progress::Spinner::new(!args.quiet && std::io::stderr().is_terminal());
+    let start = Instant::now();
+    let result = thirdbody::solve_observed(&case, &solver, &mut |p| spinner.observe(p));
+    let solve_seconds = start.elapsed().as_secs_f64();
+    spinner.finish();
+    let solution = result?;
+
+    let summary = outputs::summary_json(&case, &solution, solve_seconds)?;
+    outputs::write_all(&args.out, &case, &solution, &summary)?;
+    if !args.quiet {
+        println!(
+            "{}: {}",
+            args.case.display(),
+            report::human_summary(&case, &solution, solve_seconds)
+        );
+        println!("outputs in {}", args.out.display());
+    }
+    Ok(())
+}

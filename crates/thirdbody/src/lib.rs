@@ -11,6 +11,7 @@
 
 pub mod body;
 pub mod case;
+pub mod case_file;
 pub mod contact;
 pub mod convolution;
 pub mod error;

@@ -1,0 +1,216 @@
+//! The files a solve writes into its output folder (docs/outputs.md): the summary
+//! (`summary.json`), grid fields as NPY arrays of shape (ny, nx) with rows along y
+//! (`pressure.npy`, `body_displacement.npy`, `gap.npy`, and with a layer
+//! `compliance.npy` and `layer_displacement.npy`), the pressure as CSV
+//! (`x,y,pressure`, one line per cell) and the plots. All are staged and renamed
+//! into place together (see [`crate::staging`]).
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use ndarray::Array2;
+use serde_json::{json, Map, Value};
+use thirdbody::{Case, Grid, Solution, Units};
+
+use crate::plot::{self, Series};
+use crate::staging::Staging;
+
+/// The summary of a solve as written to `summary.json`: the library's
+/// [`thirdbody::Summary`] plus the solver report, the wall time of kernel set-up
+/// and solve, the units and the window.
+pub fn summary_json(case: &Case, solution: &Solution, solve_seconds: f64) -> Result<Value> {
+    let Value::Object(mut map) = serde_json::to_value(solution.summary())? else {
+        anyhow::bail!("the summary did not serialise to an object");
+    };
+    let g = &solution.grid;
+    let [wx, wy] = g.half_widths();
+    let [cx, cy] = g.centre();
+    let info = &solution.info;
+    let extra: Map<String, Value> = json!({
+        "solve_seconds": solve_seconds,
+        "units": match case.units {
+            Units::Dimensionless => "dimensionless",
+            Units::Si => "si",
+        },
+        "method": info.method,
+        "linear_iterations": info.linear_iterations,
+        "windows": info.windows,
+        "window_x_min": cx - wx,
+        "window_x_max": cx + wx,
+        "window_y_min": cy - wy,
+        "window_y_max": cy + wy,
+    })
+    .as_object()
+    .cloned()
+    .unwrap_or_default();
+    map.extend(extra);
+    Ok(Value::Object(map))
+}
+
+/// Axis and colour-bar labels in the case's units.
+struct Labels {
+    x: &'static str,
+    y: &'static str,
+    pressure: &'static str,
+    compliance: &'static str,
+}
+
+fn labels(units: Units) -> Labels {
+    match units {
+        Units::Dimensionless => Labels {
+            x: "x'",
+            y: "y'",
+            pressure: "p'",
+            compliance: "C'",
+        },
+        Units::Si => Labels {
+            x: "x (m)",
+            y: "y (m)",
+            pressure: "p (Pa)",
+            compliance: "C (m/Pa)",
+        },
+    }
+}
+
+/// Writes every output of a solve into `dir`; nothing is left there on failure.
+pub fn write_all(
+    dir: &Path,
+    case: &Case,
+    solution: &Solution,
+    summary: &Value,
+) -> Result<Vec<PathBuf>> {
+    let g = &solution.grid;
+    let p = &solution.pressure;
+    let mut out = Staging::new(dir)?;
+    out.write("summary.json", |path| {
+        let mut text = serde_json::to_string_pretty(summary)?;
+        text.push('\n');
+        Ok(std::fs::write(path, text)?)
+    })?;
+    out.write("pressure.npy", |path| write_field_npy(path, g, p))?;
+    out.write("pressure.csv", |path| write_pressure_csv(path, g, p))?;
+    out.write("body_displacement.npy", |path| {
+        write_field_npy(path, g, &solution.body_displacement)
+    })?;
+    out.write("gap.npy", |path| write_field_npy(path, g, &solution.gap))?;
+    if let Some(c) = &solution.compliance {
+        out.write("compliance.npy", |path| write_field_npy(path, g, c))?;
+    }
+    if let Some(w3) = &solution.layer_displacement {
+        out.write("layer_displacement.npy", |path| {
+            write_field_npy(path, g, w3)
+        })?;
+    }
+
+    let l = labels(case.units);
+    out.write("pressure_map.png", |path| {
+        plot::field_map(
+            path,
+            g,
+            p,
+            "Contact pressure",
+            l.x,
+            l.y,
+            l.pressure,
+            Some(p),
+        )
+    })?;
+    out.write("pressure_x.png", |path| {
+        let j = row_nearest_y0(g);
+        let series = [Series {
+            label: format!("y = {:.3e}", g.y(j)),
+            x: (0..g.nx).map(|i| g.x(i)).collect(),
+            y: p[j * g.nx..(j + 1) * g.nx].to_vec(),
+            dashed: false,
+        }];
+        plot::line_plot(
+            path,
+            &series,
+            "Pressure along x through the centre",
+            l.x,
+            l.pressure,
+            false,
+        )
+    })?;
+    if let Some(c) = &solution.compliance {
+        out.write("compliance_map.png", |path| {
+            plot::field_map(
+                path,
+                g,
+                c,
+                "Layer compliance",
+                l.x,
+                l.y,
+                l.compliance,
+                Some(p),
+            )
+        })?;
+    }
+    out.commit()
+}
+
+/// The row whose centre is nearest y = 0 (the first of two equally near).
+pub fn row_nearest_y0(g: &Grid) -> usize {
+    (0..g.ny)
+        .min_by(|&a, &b| g.y(a).abs().total_cmp(&g.y(b).abs()))
+        .unwrap_or(0)
+}
+
+/// A grid field as a float64 NPY array of shape (ny, nx).
+fn write_field_npy(path: &Path, g: &Grid, field: &[f64]) -> Result<()> {
+    let array = Array2::from_shape_vec((g.ny, g.nx), field.to_vec())
+        .context("field size does not match the grid")?;
+    ndarray_npy::write_npy(path, &array)?;
+    Ok(())
+}
+
+/// `x,y,pressure` per cell, rows along y (y outer, x inner), shortest round-trip
+/// decimal form.
+fn write_pressure_csv(path: &Path, g: &Grid, p: &[f64]) -> Result<()> {
+    let mut w = BufWriter::new(File::create(path)?);
+    writeln!(w, "x,y,pressure")?;
+    for j in 0..g.ny {
+        let y = g.y(j);
+        for i in 0..g.nx {
+            writeln!(w, "{},{},{}", g.x(i), y, p[g.index(i, j)])?;
+        }
+    }
+    w.flush()?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_centre_row_is_found_for_even_and_odd_rows() {
+        // 9 rows centred on 0: the middle row (j = 4) has y = 0 exactly.
+        let g = Grid::centred(8, 9, 1.0, [0.0, 0.0]).unwrap();
+        assert_eq!(row_nearest_y0(&g), 4);
+        // Window centred at y = 1.2 with cells of 1: rows at ... -0.3, 0.7 ...
+        let g = Grid::centred(8, 8, 1.0, [0.0, 1.2]).unwrap();
+        let j = row_nearest_y0(&g);
+        assert!((g.y(j) - -0.3).abs() < 1e-12, "{}", g.y(j));
+    }
+
+    #[test]
+    fn csv_and_npy_are_laid_out_with_rows_along_y() {
+        let dir = tempfile::tempdir().unwrap();
+        let g = Grid::centred(8, 8, 0.5, [0.0, 0.0]).unwrap();
+        let field: Vec<f64> = (0..64).map(|k| k as f64).collect();
+        write_field_npy(&dir.path().join("f.npy"), &g, &field).unwrap();
+        let a: Array2<f64> = ndarray_npy::read_npy(dir.path().join("f.npy")).unwrap();
+        // Cell (i = 3, j = 5) holds index j * nx + i = 43.
+        assert_eq!(a[[5, 3]], 43.0);
+        write_pressure_csv(&dir.path().join("p.csv"), &g, &field).unwrap();
+        let text = std::fs::read_to_string(dir.path().join("p.csv")).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 65);
+        assert_eq!(lines[0], "x,y,pressure");
+        // Line 1 + 43: x_3 = -2 + 3.5 * 0.5 = -0.25, y_5 = -2 + 5.5 * 0.5 = 0.75.
+        assert_eq!(lines[44], "-0.25,0.75,43");
+    }
+}

@@ -1,0 +1,56 @@
+//! The short human summary printed after a solve.
+
+use std::fmt::Write;
+
+use thirdbody::{Case, Solution, Units};
+
+/// A few lines: how the solve went, then D, the maximum pressure, the contact's
+/// area and extent, and the friction.
+pub fn human_summary(case: &Case, solution: &Solution, solve_seconds: f64) -> String {
+    let s = solution.summary();
+    let info = &solution.info;
+    let (len, area, force, stress, moment) = match case.units {
+        Units::Dimensionless => ("", "", "", "", ""),
+        Units::Si => (" m", " m^2", " N", " Pa", " N m"),
+    };
+    let method = serde_json::to_value(info.method)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default();
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "solved in {solve_seconds:.2} s: {method}, {} iterations, residual {:.1e}, {} window{}",
+        s.iterations,
+        s.residual,
+        info.windows,
+        if info.windows == 1 { "" } else { "s" }
+    );
+    let _ = writeln!(
+        t,
+        "  grid          {} x {} cells of {:.4e}{len}",
+        s.nx, s.ny, s.cell_size
+    );
+    let _ = writeln!(
+        t,
+        "  load          Q = {:.4e}{force}, penetration D = {:.4e}{len}",
+        s.normal_load, s.penetration
+    );
+    let _ = writeln!(
+        t,
+        "  max pressure  {:.4e}{stress} at x = {:.4e}{len}, y = {:.4e}{len}",
+        s.max_pressure, s.max_pressure_x, s.max_pressure_y
+    );
+    let _ = writeln!(
+        t,
+        "  contact       area {:.4e}{area}, x from {:.4e} to {:.4e}{len}, y from {:.4e} to \
+         {:.4e}{len}",
+        s.contact_area, s.contact_x_min, s.contact_x_max, s.contact_y_min, s.contact_y_max
+    );
+    let _ = write!(
+        t,
+        "  friction      mu = {:.4e}, Q_T = {:.4e}{force}, moment M = {:.4e}{moment}",
+        s.friction_coefficient, s.tangential_force, s.moment
+    );
+    t
+}

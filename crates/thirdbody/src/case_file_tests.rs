@@ -1,0 +1,421 @@
+//! Tests of the case-file parser: every schema branch against a hand-built
+//! [`Case`], and every bad input against an error that names the field and the
+//! allowed range in one line.
+
+use super::*;
+
+/// The paper's Fig. 3 case, as issue 2 gives it.
+const FIG3: &str = r#"
+[slider]
+shape = "sphere"
+radius = 1.0
+
+[substrate]
+young = 1.0
+poisson = 0.3
+
+[layer]
+compliance = 0.02
+relaxation_time = 1.0
+law = "sigmoid"
+delta = 0.5
+p0 = 0.001
+integration = "exact"
+
+[loading]
+normal_load = 5e-6
+velocity = 1e-3
+
+[grid]
+cells = [128, 128]
+"#;
+
+/// A layer-free sphere.
+const HERTZ: &str = r#"
+[slider]
+shape = "sphere"
+radius = 1.0
+[substrate]
+young = 1.0
+poisson = 0.3
+[loading]
+normal_load = 5e-6
+[grid]
+cells = [32, 32]
+"#;
+
+fn no_map(_: &str, _: f64) -> Result<HeightMap> {
+    panic!("no height map expected")
+}
+
+fn parse(text: &str) -> Result<CaseFile> {
+    parse_case_file(text, &mut no_map)
+}
+
+/// Replaces the first line starting with `key =` (after trimming) by `new`.
+fn with(text: &str, key: &str, new: &str) -> String {
+    let mut done = false;
+    text.lines()
+        .map(|l| {
+            if !done && l.trim_start().starts_with(&format!("{key} =")) {
+                done = true;
+                new.to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Inserts `line` right after the header `[section]`.
+fn add(text: &str, section: &str, line: &str) -> String {
+    text.replacen(
+        &format!("[{section}]\n"),
+        &format!("[{section}]\n{line}\n"),
+        1,
+    )
+}
+
+/// The error message, checked to be a single line containing every `parts`.
+fn error_naming(text: &str, parts: &[&str]) -> Error {
+    let e = parse(text).expect_err("this case must be rejected");
+    let msg = e.to_string();
+    assert!(!msg.contains('\n'), "multi-line message: {msg}");
+    for p in parts {
+        assert!(msg.contains(p), "{msg:?} does not mention {p:?}");
+    }
+    e
+}
+
+#[test]
+fn paper_fig3_parses_into_the_hand_built_case() {
+    let file = parse(FIG3).unwrap();
+    let expected = Case {
+        slider: Slider::Sphere { radius: 1.0 },
+        body: Body::Homogeneous(Elastic {
+            young: 1.0,
+            poisson: 0.3,
+        }),
+        layer: Some(Layer {
+            compliance: 0.02,
+            relaxation_time: 1.0,
+            law: ComplianceLaw::Sigmoid {
+                delta: 0.5,
+                p0: 0.001,
+            },
+            integration: Integration::Exact,
+        }),
+        loading: Loading {
+            normal_load: 5e-6,
+            velocity: Some(1e-3),
+        },
+        grid: GridSpec {
+            cells: [128, 128],
+            half_width: None,
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    };
+    assert_eq!(file.case, expected);
+    assert_eq!(file.solver, SolverParams::default());
+}
+
+#[test]
+fn shipped_examples_parse() {
+    // examples/paper_fig3.toml is issue 2's text exactly.
+    let fig3 = include_str!("../../../examples/paper_fig3.toml");
+    assert_eq!(fig3.trim(), FIG3.trim());
+    let hertz = parse(include_str!("../../../examples/hertz.toml")).unwrap();
+    assert!(hertz.case.layer.is_none());
+    assert_eq!(hertz.case.grid.cells, [128, 128]);
+    let ellipsoid = parse(include_str!("../../../examples/ellipsoid_si.toml")).unwrap();
+    assert_eq!(ellipsoid.case.units, Units::Si);
+    assert!(matches!(ellipsoid.case.slider, Slider::Ellipsoid { .. }));
+}
+
+#[test]
+fn no_layer_needs_no_velocity_and_accepts_integers_for_reals() {
+    let text = with(HERTZ, "young", "young = 2");
+    let file = parse(&text).unwrap();
+    assert!(file.case.layer.is_none());
+    assert_eq!(file.case.loading.velocity, None);
+    assert_eq!(file.case.body.substrate().young, 2.0);
+}
+
+#[test]
+fn linear_layer_defaults_to_exact_integration_and_accepts_infinite_velocity() {
+    let text = HERTZ.replace(
+        "[loading]\nnormal_load = 5e-6",
+        "[layer]\ncompliance = 0.1\nrelaxation_time = 2.0\n[loading]\nnormal_load = 5e-6\nvelocity = inf",
+    );
+    let file = parse(&text).unwrap();
+    let layer = file.case.layer.unwrap();
+    assert_eq!(layer.law, ComplianceLaw::Linear);
+    assert_eq!(layer.integration, Integration::Exact);
+    assert_eq!(layer.compliance, 0.1);
+    assert_eq!(layer.relaxation_time, 2.0);
+    assert_eq!(file.case.loading.velocity, Some(f64::INFINITY));
+}
+
+#[test]
+fn secant_integration_and_table_law() {
+    let text = FIG3
+        .replace(
+            "compliance = 0.02\n",
+            "pressures = [0.0, 0.01, 0.02]\ncompliances = [0.02, 0.015, 0.01]\n",
+        )
+        .replace(
+            "law = \"sigmoid\"\ndelta = 0.5\np0 = 0.001\n",
+            "law = \"table\"\n",
+        )
+        .replace("\"exact\"", "\"secant\"");
+    let layer = parse(&text).unwrap().case.layer.unwrap();
+    assert_eq!(layer.integration, Integration::Secant);
+    let ComplianceLaw::Table(t) = &layer.law else {
+        panic!("{:?}", layer.law)
+    };
+    assert_eq!(t.pressures(), &[0.0, 0.01, 0.02]);
+    assert_eq!(t.compliances(), &[0.02, 0.015, 0.01]);
+    // The table's first compliance is C0.
+    assert_eq!(layer.zero_pressure_compliance(), 0.02);
+}
+
+#[test]
+fn ellipsoid_coating_units_window_and_solver_sections() {
+    let text = r#"
+units = "si"
+[slider]
+shape = "ellipsoid"
+radius_x = 0.02
+radius_y = 0.01
+[substrate]
+young = 210e9
+poisson = 0.3
+[coating]
+young = 70e9
+poisson = 0.25
+thickness = 1e-5
+[loading]
+normal_load = 10.0
+[grid]
+cells = [64, 32]
+half_width = [2e-4, 1e-4]
+centre = [1e-5, 0.0]
+[solver]
+tolerance = 1e-8
+max_iterations = 50
+max_windows = 2
+"#;
+    let file = parse(text).unwrap();
+    let c = &file.case;
+    assert_eq!(c.units, Units::Si);
+    assert_eq!(
+        c.slider,
+        Slider::Ellipsoid {
+            radius_x: 0.02,
+            radius_y: 0.01
+        }
+    );
+    assert_eq!(
+        c.body,
+        Body::Coated {
+            coating: Elastic {
+                young: 70e9,
+                poisson: 0.25
+            },
+            thickness: 1e-5,
+            substrate: Elastic {
+                young: 210e9,
+                poisson: 0.3
+            },
+        }
+    );
+    assert_eq!(c.grid.half_width, Some([2e-4, 1e-4]));
+    assert_eq!(c.grid.centre, Some([1e-5, 0.0]));
+    assert_eq!(file.solver.tolerance, 1e-8);
+    assert_eq!(file.solver.max_iterations, 50);
+    assert_eq!(file.solver.max_windows, 2);
+}
+
+fn height_map_case(file: &str) -> String {
+    HERTZ.replace(
+        "shape = \"sphere\"\nradius = 1.0",
+        &format!("shape = \"height_map\"\nfile = \"{file}\"\ncell_size = 0.25"),
+    )
+}
+
+#[test]
+fn height_map_is_loaded_by_the_callback() {
+    let mut seen = Vec::new();
+    let mut load = |file: &str, cell: f64| {
+        seen.push((file.to_string(), cell));
+        Ok(HeightMap {
+            nx: 3,
+            ny: 2,
+            cell_size: cell,
+            heights: vec![1.0, 0.0, 1.0, 1.5, 0.5, 1.5],
+        })
+    };
+    let file = parse_case_file(&height_map_case("maps/bump.csv"), &mut load).unwrap();
+    assert_eq!(seen, vec![("maps/bump.csv".to_string(), 0.25)]);
+    let Slider::HeightMap(m) = &file.case.slider else {
+        panic!()
+    };
+    assert_eq!((m.nx, m.ny, m.cell_size), (3, 2, 0.25));
+}
+
+#[test]
+fn height_map_with_nan_is_named() {
+    let mut load = |_: &str, cell: f64| {
+        Ok(HeightMap {
+            nx: 2,
+            ny: 2,
+            cell_size: cell,
+            heights: vec![0.0, 1.0, f64::NAN, 1.0],
+        })
+    };
+    let e = parse_case_file(&height_map_case("m.csv"), &mut load).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains("slider.file") && msg.contains("NaN"), "{msg}");
+    assert!(msg.contains("finite heights"), "{msg}");
+}
+
+#[test]
+fn a_loader_error_is_passed_through() {
+    let mut load = |file: &str, _: f64| {
+        Err(Error::invalid(
+            "slider.file",
+            file,
+            "a readable CSV or NPY file",
+        ))
+    };
+    let e = parse_case_file(&height_map_case("gone.npy"), &mut load).unwrap_err();
+    assert!(e.to_string().contains("gone.npy"), "{e}");
+}
+
+#[test]
+fn unknown_key_gives_its_line_section_and_name() {
+    let text = add(FIG3, "slider", "radiuss = 2.0");
+    let e = error_naming(&text, &["line 3 (slider.radiuss)", "radiuss"]);
+    assert!(matches!(e, Error::Parse(_)), "{e:?}");
+    // Unknown section.
+    let e = error_naming(&format!("{FIG3}\n[lubricant]\nx = 1\n"), &["lubricant"]);
+    assert!(matches!(e, Error::Parse(_)), "{e:?}");
+}
+
+#[test]
+fn wrong_type_and_bad_syntax_are_one_line_parse_errors() {
+    let text = with(FIG3, "young", "young = \"steel\"");
+    let e = error_naming(&text, &["line 7 (substrate.young)", "string"]);
+    assert!(matches!(e, Error::Parse(_)), "{e:?}");
+    error_naming(&with(FIG3, "law", "law = \"cubic\""), &["cubic", "sigmoid"]);
+    error_naming(&with(FIG3, "poisson", "poisson = "), &["line 8"]);
+    error_naming(&with(FIG3, "cells", "cells = [128]"), &["line 23"]);
+}
+
+#[test]
+fn missing_sections_are_named() {
+    for name in ["slider", "substrate", "loading", "grid"] {
+        let text = FIG3.replace(&format!("[{name}]"), "[dummy]");
+        // `[dummy]` is itself unknown: the parse error names it.
+        error_naming(&text, &["dummy"]);
+        let start = FIG3.find(&format!("[{name}]")).unwrap();
+        let end = FIG3[start + 1..]
+            .find("\n[")
+            .map_or(FIG3.len(), |k| start + 1 + k);
+        let text = format!("{}{}", &FIG3[..start], &FIG3[end..]);
+        let e = error_naming(&text, &[&format!("[{name}]")]);
+        assert!(matches!(e, Error::MissingField { .. }), "{e:?}");
+    }
+}
+
+#[test]
+fn out_of_range_values_name_the_field_and_the_range() {
+    let cases: [(&str, &str, &[&str]); 11] = [
+        ("poisson", "poisson = 0.5", &["substrate.poisson", "< 0.5"]),
+        ("poisson", "poisson = 0.7", &["substrate.poisson", "< 0.5"]),
+        ("young", "young = 0.0", &["substrate.young", "> 0"]),
+        ("young", "young = -3.0", &["substrate.young", "> 0"]),
+        (
+            "normal_load",
+            "normal_load = 0.0",
+            &["loading.normal_load", "> 0"],
+        ),
+        (
+            "normal_load",
+            "normal_load = -1e-6",
+            &["loading.normal_load", "> 0"],
+        ),
+        ("delta", "delta = 1.5", &["layer.delta", "0 <= delta <= 1"]),
+        ("delta", "delta = -0.1", &["layer.delta", "0 <= delta <= 1"]),
+        ("p0", "p0 = 0.0", &["layer.p0", "> 0"]),
+        (
+            "cells",
+            "cells = [7, 128]",
+            &["grid.cells[0]", "at least 8"],
+        ),
+        (
+            "cells",
+            "cells = [128, 4]",
+            &["grid.cells[1]", "at least 8"],
+        ),
+    ];
+    for (key, line, parts) in cases {
+        let e = error_naming(&with(FIG3, key, line), parts);
+        assert!(matches!(e, Error::InvalidValue { .. }), "{e:?}");
+    }
+    error_naming(&with(FIG3, "p0", "p0 = nan"), &["layer.p0", "> 0"]);
+    error_naming(
+        &with(FIG3, "compliance", "compliance = -0.02"),
+        &["layer.compliance", "> 0"],
+    );
+    error_naming(
+        &with(FIG3, "velocity", "velocity = 0.0"),
+        &["loading.velocity", "> 0"],
+    );
+    error_naming(
+        &format!("{FIG3}\n[solver]\ntolerance = 2.0\n"),
+        &["solver.tolerance", "0 < tolerance < 1"],
+    );
+}
+
+#[test]
+fn fields_the_options_do_not_use_are_errors() {
+    let linear = with(FIG3, "law", "law = \"linear\"");
+    let e = error_naming(&linear, &["layer.delta", "sigmoid"]);
+    assert!(matches!(e, Error::UnusedField { .. }), "{e:?}");
+    let e = error_naming(&add(FIG3, "slider", "radius_x = 1.0"), &["slider.radius_x"]);
+    assert!(matches!(e, Error::UnusedField { .. }), "{e:?}");
+    let ellipsoid = with(FIG3, "shape", "shape = \"ellipsoid\"");
+    error_naming(&ellipsoid, &["slider.radius", "radius_x"]);
+    let table = with(FIG3, "law", "law = \"table\"");
+    error_naming(&table, &["layer.compliance", "table"]);
+    error_naming(
+        &add(FIG3, "layer", "pressures = [0.0, 1.0]"),
+        &["layer.pressures", "table"],
+    );
+}
+
+#[test]
+fn fields_the_options_need_are_named_when_missing() {
+    let e = error_naming(
+        &with(FIG3, "delta", ""),
+        &["layer.delta", "0 <= delta <= 1"],
+    );
+    assert!(matches!(e, Error::MissingField { .. }), "{e:?}");
+    error_naming(&with(FIG3, "velocity", ""), &["loading.velocity"]);
+    error_naming(&with(FIG3, "radius", ""), &["slider.radius", "> 0"]);
+    error_naming(
+        &with(FIG3, "relaxation_time", ""),
+        &["layer.relaxation_time"],
+    );
+    error_naming(&with(FIG3, "cells", ""), &["grid.cells", ">= 8"]);
+    error_naming(&with(FIG3, "shape", ""), &["slider.shape", "ellipsoid"]);
+    let coated = format!("{FIG3}\n[coating]\nyoung = 2.0\npoisson = 0.3\n");
+    error_naming(&coated, &["coating.thickness", "> 0"]);
+    let bad_table = with(FIG3, "law", "law = \"table\"")
+        .replace("compliance = 0.02\n", "")
+        .replace("delta = 0.5\np0 = 0.001\n", "pressures = [0.0, 1.0]\n");
+    error_naming(&bad_table, &["layer.compliances"]);
+}
