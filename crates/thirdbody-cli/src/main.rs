@@ -8,7 +8,7 @@
 
 mod heightmap;
 mod outputs;
-mod plot;
+use thirdbody_cli::plot;
 mod progress;
 mod report;
 mod staging;
