@@ -297,7 +297,7 @@ fn main() -> Result<()> {
                     integration: name,
                     label,
                     solution,
-                    body: c.body.clone(),
+                    body: c.body,
                 };
                 report(&row, &mut results)?;
                 if cells == 128 && name == "exact" {
@@ -315,7 +315,7 @@ fn main() -> Result<()> {
                             0.75 * g.nx as f64 * g.cell
                         ),
                         solution,
-                        body: c.body.clone(),
+                        body: c.body,
                     };
                     report(&row, &mut results)?;
                 }
