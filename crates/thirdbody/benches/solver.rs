@@ -1,48 +1,23 @@
 //! Issue 2, acceptance 6: solve times of the paper's Fig. 3 case at 256 x 256 and of
 //! the layer-free Hertz case (window side 0.048, Q' = 5e-6, residual 1e-10) at
-//! 256 x 256 and 1024 x 1024, including the kernel set-up.
+//! 256 x 256 and 1024 x 1024, including the kernel set-up. The cases are the bundled
+//! `examples/paper_fig3.toml` and `examples/hertz_benchmark.toml`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
 use thirdbody::*;
 
-fn sphere(n: usize) -> Case {
-    Case {
-        slider: Slider::Sphere { radius: 1.0 },
-        body: Body::Homogeneous(Elastic {
-            young: 1.0,
-            poisson: 0.3,
-        }),
-        layer: None,
-        loading: Loading {
-            normal_load: 5e-6,
-            velocity: None,
-        },
-        grid: GridSpec {
-            cells: [n, n],
-            half_width: Some([0.024, 0.024]),
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    }
-}
-
-/// The paper's Fig. 3 case (examples/paper_fig3.toml).
-fn paper_fig3(n: usize) -> Case {
-    let mut c = sphere(n);
-    c.grid.half_width = None;
-    c.layer = Some(Layer {
-        compliance: 0.02,
-        relaxation_time: 1.0,
-        law: ComplianceLaw::Sigmoid {
-            delta: 0.5,
-            p0: 0.001,
-        },
-        integration: Integration::Exact,
-    });
-    c.loading.velocity = Some(1e-3);
-    c
+/// A bundled case file with `n x n` cells.
+fn bundled(name: &str, n: usize) -> Case {
+    let path = format!("{}/../../examples/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("bundled example");
+    let mut no_maps = |_: &str, _: f64| -> Result<HeightMap> { unreachable!("no height map") };
+    let mut case = thirdbody::case_file::parse_case_file(&text, &mut no_maps)
+        .expect("valid example")
+        .case;
+    case.grid.cells = [n, n];
+    case
 }
 
 fn bench(c: &mut Criterion) {
@@ -50,15 +25,15 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("solve");
     g.sample_size(10).measurement_time(Duration::from_secs(20));
     g.bench_function("paper_fig3_256", |b| {
-        let case = paper_fig3(256);
+        let case = bundled("paper_fig3", 256);
         b.iter(|| black_box(solve(&case, &params).unwrap()))
     });
     g.bench_function("hertz_256", |b| {
-        let case = sphere(256);
+        let case = bundled("hertz_benchmark", 256);
         b.iter(|| black_box(solve(&case, &params).unwrap()))
     });
     g.bench_function("hertz_1024", |b| {
-        let case = sphere(1024);
+        let case = bundled("hertz_benchmark", 1024);
         b.iter(|| black_box(solve(&case, &params).unwrap()))
     });
     g.finish();

@@ -10,38 +10,15 @@ use std::time::Instant;
 use thirdbody::reference::solve_dense;
 use thirdbody::*;
 
+/// The bundled case file `examples/<kind>.toml` with `n x n` cells.
 fn case(kind: &str, n: usize) -> Case {
-    let mut c = Case {
-        slider: Slider::Sphere { radius: 1.0 },
-        body: Body::Homogeneous(Elastic {
-            young: 1.0,
-            poisson: 0.3,
-        }),
-        layer: None,
-        loading: Loading {
-            normal_load: 5e-6,
-            velocity: None,
-        },
-        grid: GridSpec {
-            cells: [n, n],
-            half_width: Some([0.024, 0.024]),
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    };
-    if kind == "paper_fig3" {
-        c.grid.half_width = None;
-        c.layer = Some(Layer {
-            compliance: 0.02,
-            relaxation_time: 1.0,
-            law: ComplianceLaw::Sigmoid {
-                delta: 0.5,
-                p0: 0.001,
-            },
-            integration: Integration::Exact,
-        });
-        c.loading.velocity = Some(1e-3);
-    }
+    let path = format!("{}/../../examples/{kind}.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("bundled example");
+    let mut no_maps = |_: &str, _: f64| -> Result<HeightMap> { unreachable!("no height map") };
+    let mut c = thirdbody::case_file::parse_case_file(&text, &mut no_maps)
+        .expect("valid example")
+        .case;
+    c.grid.cells = [n, n];
     c
 }
 
@@ -102,7 +79,7 @@ fn main() {
     println!("| case | cells a side | method | median solve (s) | peak RSS (MiB) | notes |");
     println!("|---|---|---|---|---|---|");
     let mut runs = Vec::new();
-    for kind in ["hertz", "paper_fig3"] {
+    for kind in ["hertz_benchmark", "paper_fig3"] {
         for n in [64, 128, 256, 512, 1024] {
             runs.push((kind, n, "fft"));
         }
