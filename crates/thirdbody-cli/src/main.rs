@@ -8,7 +8,6 @@
 
 mod heightmap;
 mod outputs;
-mod plot;
 mod progress;
 mod report;
 mod staging;

@@ -20,7 +20,10 @@ fn hertz(q: f64, r: f64, e: f64, nu: f64) -> (f64, f64, f64) {
 fn sphere_without_layer_matches_hertz() {
     let (a, p0, d) = hertz(5e-6, 1.0, 1.0, 0.3);
     // Automatic window (refitted around the contact) and a fixed one.
-    for case in [sphere(5e-6, 96), fixed_window(sphere(5e-6, 128), 0.024, [0.0, 0.0])] {
+    for case in [
+        sphere(5e-6, 96),
+        fixed_window(sphere(5e-6, 128), 0.024, [0.0, 0.0]),
+    ] {
         let s = solve_to(&case, 1e-10);
         let m = s.summary();
         let across = 2.0 * a / m.cell_size;
@@ -36,7 +39,10 @@ fn sphere_without_layer_matches_hertz() {
         assert!(rel(m.max_pressure, p0) < 5e-3);
         assert!(rel(m.penetration, d) < 5e-3);
         assert!(rel(radius, a) < 1e-2);
-        assert!(m.friction_coefficient.abs() < 1e-10, "no layer, no hysteresis");
+        assert!(
+            m.friction_coefficient.abs() < 1e-10,
+            "no layer, no hysteresis"
+        );
         assert!(s.info.residual <= 1e-10);
     }
 }
@@ -50,14 +56,22 @@ fn ellipsoid_matches_hertz_for_equal_radii_and_elongates_otherwise() {
     };
     let sphere_solution = solve_to(&sphere(5e-6, 64), 1e-10);
     let s = solve_to(&case, 1e-10);
-    assert!(rel(s.summary().max_pressure, sphere_solution.summary().max_pressure) < 1e-12);
+    assert!(
+        rel(
+            s.summary().max_pressure,
+            sphere_solution.summary().max_pressure
+        ) < 1e-12
+    );
     // A slider flatter along y gives a contact longer along y (Johnson §4.2(b)).
     case.slider = Slider::Ellipsoid {
         radius_x: 1.0,
         radius_y: 4.0,
     };
     let m = solve_to(&case, 1e-10).summary();
-    let (lx, ly) = (m.contact_x_max - m.contact_x_min, m.contact_y_max - m.contact_y_min);
+    let (lx, ly) = (
+        m.contact_x_max - m.contact_x_min,
+        m.contact_y_max - m.contact_y_min,
+    );
     assert!(ly > 1.5 * lx, "{lx} {ly}");
 }
 
@@ -65,8 +79,22 @@ fn ellipsoid_matches_hertz_for_equal_radii_and_elongates_otherwise() {
 fn load_balance_holds_to_round_off() {
     let cases = [
         sphere(5e-6, 48),
-        layered(5e-6, 48, 0.02, 1e-3, sigmoid(0.5, 0.001), Integration::Exact),
-        layered(5e-6, 48, 0.02, 1e-2, stiffening_table(), Integration::Secant),
+        layered(
+            5e-6,
+            48,
+            0.02,
+            1e-3,
+            sigmoid(0.5, 0.001),
+            Integration::Exact,
+        ),
+        layered(
+            5e-6,
+            48,
+            0.02,
+            1e-2,
+            stiffening_table(),
+            Integration::Secant,
+        ),
     ];
     for case in cases {
         let s = solve_to(&case, 1e-10);
@@ -95,20 +123,27 @@ fn infinite_velocity_gives_a_symmetric_pressure_and_no_friction() {
             for j in 0..g.ny {
                 for i in 0..g.nx {
                     let mirror = g.nx - 1 - i;
-                    asym = asym.max((s.pressure[g.index(i, j)] - s.pressure[g.index(mirror, j)]).abs());
+                    asym = asym
+                        .max((s.pressure[g.index(i, j)] - s.pressure[g.index(mirror, j)]).abs());
                 }
             }
             let mu = s.summary().friction_coefficient;
-            eprintln!("V = {velocity:e}, {law:?}: asymmetry {:.1e}, mu {mu:.1e}", asym / pmax);
+            eprintln!(
+                "V = {velocity:e}, {law:?}: asymmetry {:.1e}, mu {mu:.1e}",
+                asym / pmax
+            );
             assert!(asym <= 1e-7 * pmax, "asymmetry {}", asym / pmax);
             assert!(mu.abs() < 1e-7, "mu = {mu}");
         }
     }
     // And mu falls towards 0 as V grows (paper Fig. 8).
     let mu = |v: f64| {
-        solve_to(&layered(5e-6, 48, 0.02, v, ComplianceLaw::Linear, Integration::Exact), 1e-10)
-            .summary()
-            .friction_coefficient
+        solve_to(
+            &layered(5e-6, 48, 0.02, v, ComplianceLaw::Linear, Integration::Exact),
+            1e-10,
+        )
+        .summary()
+        .friction_coefficient
     };
     let (slow, fast) = (mu(1e-2), mu(10.0));
     assert!(fast < 0.05 * slow, "{slow} {fast}");
@@ -121,7 +156,10 @@ fn delta_zero_is_exactly_the_linear_law() {
             &layered(5e-6, 48, 0.02, 1e-3, ComplianceLaw::Linear, integration),
             1e-10,
         );
-        let sig = solve_to(&layered(5e-6, 48, 0.02, 1e-3, sigmoid(0.0, 0.003), integration), 1e-10);
+        let sig = solve_to(
+            &layered(5e-6, 48, 0.02, 1e-3, sigmoid(0.0, 0.003), integration),
+            1e-10,
+        );
         assert_eq!(lin.grid, sig.grid);
         assert_eq!(lin.pressure, sig.pressure, "bitwise equal pressures");
         assert_eq!(lin.approach, sig.approach);
@@ -143,7 +181,14 @@ fn fixed_window_that_cuts_the_contact_is_an_error() {
 #[test]
 fn automatic_window_grows_until_it_holds_the_contact() {
     // A load 1000 times the estimate's: the first window is far too small.
-    let mut case = layered(5e-6, 32, 0.02, 1e-3, ComplianceLaw::Linear, Integration::Exact);
+    let mut case = layered(
+        5e-6,
+        32,
+        0.02,
+        1e-3,
+        ComplianceLaw::Linear,
+        Integration::Exact,
+    );
     case.body = Body::Homogeneous(Elastic {
         young: 1e-3,
         poisson: 0.3,

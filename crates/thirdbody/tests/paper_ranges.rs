@@ -18,7 +18,8 @@ fn every_corner_of_the_paper_ranges_converges() {
                 for &delta in &[0.0, 1.0] {
                     for &p0 in &[0.001, 0.05] {
                         for integration in [Integration::Exact, Integration::Secant] {
-                            let case = layered(load, 48, c0, velocity, sigmoid(delta, p0), integration);
+                            let case =
+                                layered(load, 48, c0, velocity, sigmoid(delta, p0), integration);
                             count += 1;
                             match solve(&case, &SolverParams::default()) {
                                 Ok(s) => {
@@ -37,5 +38,10 @@ fn every_corner_of_the_paper_ranges_converges() {
         }
     }
     eprintln!("{count} cases, worst {worst_iterations} Newton steps");
-    assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

@@ -9,7 +9,11 @@ use thirdbody::*;
 const N: usize = 64;
 
 fn summary(law: ComplianceLaw, c0: f64, load: f64, velocity: f64) -> Summary {
-    solve_to(&layered(load, N, c0, velocity, law, Integration::Exact), 1e-9).summary()
+    solve_to(
+        &layered(load, N, c0, velocity, law, Integration::Exact),
+        1e-9,
+    )
+    .summary()
 }
 
 #[test]
@@ -74,7 +78,11 @@ fn friction_falls_with_velocity_and_nonlinearity_lowers_it() {
     }
     for mu in &table[1..] {
         for (k, m) in mu.iter().enumerate() {
-            assert!(*m < table[0][k], "nonlinear below linear at V' = {}", velocities[k]);
+            assert!(
+                *m < table[0][k],
+                "nonlinear below linear at V' = {}",
+                velocities[k]
+            );
         }
     }
 }

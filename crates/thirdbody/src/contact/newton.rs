@@ -96,7 +96,9 @@ pub(crate) fn semismooth_newton(
     let mut last_residual = f64::INFINITY;
 
     let mut trial = vec![0.0; n];
-    let mut merit = evaluate(op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g);
+    let mut merit = evaluate(
+        op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g,
+    );
     for iteration in 1..=params.max_iterations {
         for k in 0..n {
             jp[k] = wb[k] + wl[k];
