@@ -8,7 +8,6 @@
 
 mod heightmap;
 mod outputs;
-use thirdbody_cli::plot;
 mod progress;
 mod report;
 mod staging;

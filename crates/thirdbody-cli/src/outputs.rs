@@ -14,8 +14,8 @@ use ndarray::Array2;
 use serde_json::{json, Map, Value};
 use thirdbody::{Case, Grid, Solution, Units};
 
-use crate::plot::{self, Series};
 use crate::staging::Staging;
+use thirdbody_cli::plot::{self, Series};
 
 /// The summary of a solve as written to `summary.json`: the library's
 /// [`thirdbody::Summary`] plus the solver report, the wall time of kernel set-up

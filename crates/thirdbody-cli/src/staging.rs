@@ -4,8 +4,6 @@
 //! final name only when all of them were written. If anything fails (or the staging
 //! is dropped without [`Staging::commit`]), the temporaries are removed, and the
 //! output folder too if this run created it, so no partial output is left behind.
-//! A writer that succeeds without creating its file declines to write it (the file
-//! is then simply not produced).
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -54,7 +52,6 @@ impl Staging {
 
     /// Renames every temporary to its final name; returns the final paths.
     pub fn commit(mut self) -> Result<Vec<PathBuf>> {
-        self.pending.retain(|(temp, _)| temp.exists());
         for (temp, target) in &self.pending {
             fs::rename(temp, target)
                 .with_context(|| format!("cannot move {} into place", target.display()))?;
@@ -112,7 +109,6 @@ mod tests {
             .unwrap();
         s.write("pressure.csv", |p| Ok(fs::write(p, "x,y,pressure\n")?))
             .unwrap();
-        s.write("declined.png", |_| Ok(())).unwrap();
         let done = s.commit().unwrap();
         assert_eq!(done.len(), 2);
         let mut names: Vec<_> = fs::read_dir(root.path())
