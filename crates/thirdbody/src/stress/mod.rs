@@ -33,6 +33,7 @@ pub use kernels::{
     StressKernels, COMPONENTS,
 };
 
+pub use crate::body::coated_stress::Side;
 use crate::case::Body;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
@@ -58,6 +59,13 @@ pub enum Section {
     Block {
         /// Depths z >= 0.
         depths: Vec<f64>,
+    },
+    /// The coating–substrate interface z = h1 of a coated body, on one side, at
+    /// every cell centre (sigma_x, sigma_y and tau_xy jump there). Elsewhere a
+    /// depth equal to h1 is read on the coating side.
+    Interface {
+        /// Which side of the interface.
+        side: Side,
     },
 }
 
@@ -199,6 +207,15 @@ pub fn stresses(
         }
         Section::Plane { z } => check_depth("stress.z", *z)?,
         Section::Block { depths } => check_depths(depths)?,
+        Section::Interface { .. } => {
+            if !matches!(body, Body::Coated { .. }) {
+                return Err(Error::invalid(
+                    "stress.sections",
+                    "interface",
+                    "an interface section only for a coated body",
+                ));
+            }
+        }
     }
     let kernels = stress_kernels(body)?;
     let xs: Vec<f64> = (0..grid.nx).map(|i| grid.x(i)).collect();
@@ -222,6 +239,7 @@ pub fn stresses(
             zs: depths.clone(),
             components: sections::planes(grid, pressure, kernels.as_ref(), depths),
         },
+        Section::Interface { .. } => unreachable!("coated stress kernels are rejected above"),
     };
     Ok(field)
 }
