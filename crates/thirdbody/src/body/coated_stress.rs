@@ -253,17 +253,30 @@ fn stress_transfer_on_side(
     z: f64,
     side: Side,
 ) -> StressTransfer {
-    // The k -> 0 limit along x, evaluated at a wavelength far beyond every length.
-    let k = kx
-        .hypot(ky)
-        .max(1e-9 / thickness.max(z).max(f64::MIN_POSITIVE));
+    let s = plane_stress_transfer(coating, thickness, substrate, kx.hypot(ky), z, side);
+    rotate(kx, ky, s)
+}
+
+/// The stresses of the wave-vector frame per unit pressure at depth z on `side`:
+/// `[T_xixi, T_etaeta, T_zz, T_xiz / i]` for a wavenumber `k >= 0` (all real; the
+/// shear transfer is `i` times the last entry). They depend on k only, not on the
+/// direction. At k = 0 the long-wave limit is returned.
+pub fn plane_stress_transfer(
+    coating: Elastic,
+    thickness: f64,
+    substrate: Elastic,
+    k: f64,
+    z: f64,
+    side: Side,
+) -> [f64; 4] {
+    // The k -> 0 limit, evaluated at a wavelength far beyond every length.
+    let k = k.max(1e-9 / thickness.max(z).max(f64::MIN_POSITIVE));
     let (t, zeta) = (k * thickness, k * z);
     let x = potential_coefficients(coating, substrate, t);
-    let s = match side {
+    match side {
         Side::Coating => plane_stresses(coating, zeta, &x[..4], &coating_basis(zeta, t)),
         Side::Substrate => plane_stresses(substrate, zeta, &x[4..], &substrate_basis(zeta, t)),
-    };
-    rotate(kx, ky, s)
+    }
 }
 
 /// Surface normal displacement per unit pressure from the same solution,

@@ -7,7 +7,7 @@ pub mod coated;
 mod coated_radial;
 pub mod coated_stress;
 pub mod homogeneous;
-mod quadrature;
+pub(crate) mod quadrature;
 
 use std::sync::Arc;
 

@@ -24,10 +24,12 @@
 //! assert!((field.components[2][k] + 1.0).abs() < 1e-12);
 //! ```
 
+mod coated_kernels;
 pub mod derived;
 pub mod kernels;
 mod sections;
 
+pub use coated_kernels::CoatedStressKernels;
 pub use kernels::{
     love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice,
     StressKernels, COMPONENTS,
@@ -132,15 +134,22 @@ impl StressField {
 }
 
 /// The stress kernels of a body: the hook where each body type supplies its own.
-pub fn stress_kernels(body: &Body) -> Result<Box<dyn StressKernels>> {
+/// For a coated body, a depth equal to the coating thickness is read on
+/// `interface_side`.
+pub fn stress_kernels(body: &Body, interface_side: Side) -> Result<Box<dyn StressKernels>> {
     body.validate()?;
     match *body {
         Body::Homogeneous(material) => Ok(Box::new(HomogeneousStressKernels { material })),
-        Body::Coated { .. } => Err(Error::invalid(
-            "body",
-            "a coated body",
-            "a homogeneous body (subsurface stresses in coated bodies are not implemented yet)",
-        )),
+        Body::Coated {
+            coating,
+            thickness,
+            substrate,
+        } => Ok(Box::new(CoatedStressKernels {
+            coating,
+            thickness,
+            substrate,
+            interface_side,
+        })),
     }
 }
 
@@ -217,7 +226,11 @@ pub fn stresses(
             }
         }
     }
-    let kernels = stress_kernels(body)?;
+    let side = match section {
+        Section::Interface { side } => *side,
+        _ => Side::Coating,
+    };
+    let kernels = stress_kernels(body, side)?;
     let xs: Vec<f64> = (0..grid.nx).map(|i| grid.x(i)).collect();
     let all_ys = || (0..grid.ny).map(|j| grid.y(j)).collect::<Vec<f64>>();
     let field = match section {
@@ -239,7 +252,17 @@ pub fn stresses(
             zs: depths.clone(),
             components: sections::planes(grid, pressure, kernels.as_ref(), depths),
         },
-        Section::Interface { .. } => unreachable!("coated stress kernels are rejected above"),
+        Section::Interface { .. } => {
+            let Body::Coated { thickness, .. } = *body else {
+                unreachable!("an interface section on a homogeneous body is rejected above")
+            };
+            StressField {
+                xs,
+                ys: all_ys(),
+                zs: vec![thickness],
+                components: sections::planes(grid, pressure, kernels.as_ref(), &[thickness]),
+            }
+        }
     };
     Ok(field)
 }

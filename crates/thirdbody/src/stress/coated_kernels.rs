@@ -1,0 +1,405 @@
+//! Stress kernels of a coated half-space (coating E1, nu1, thickness h1 bonded to a
+//! substrate E2, nu2; paper eq. 5): the six stresses at depth z per unit pressure on
+//! one square surface cell, for the DC-FFT sections of [`super`].
+//!
+//! In Fourier space the stresses at depth z are `T(k, z) p^(k)` with the transfer
+//! functions `T` of [`crate::body::coated_stress`]; the kernel of a cell of side h is
+//! `S(X) = (1 / 4 pi^2) int T(k) P(k) e^{i k.X} dk`, `P = h^2 sinc(kx h/2) sinc(ky h/2)`.
+//! `T` does not decay at large k near the surface, and in the coating it does not
+//! vanish at k -> 0, so `S` is split into three parts, each computed where it is
+//! well behaved:
+//!
+//! 1. Love's closed-form rectangle stresses of a homogeneous half-space with the
+//!    Poisson ratio of the side (z's layer), exact. Its transfer is Boussinesq's
+//!    `T_xixi = -(1 - kz) e^{-kz}`, `T_etaeta = -2 nu e^{-kz}`, `T_zz = -(1 + kz)
+//!    e^{-kz}`, `T_xiz = i kz e^{-kz}`.
+//! 2. Two carriers of the difference `T - T_Love` at small k, both Love kernels
+//!    at the depth `lambda` (`2 h1 - z` in the coating, `z` in the substrate), so
+//!    they decay at large k as fast as the difference does. (a) In the coating the
+//!    difference does not vanish as k -> 0: the coating takes the substrate's
+//!    surface strains, so `Delta T(0+) = (d_xi, d_eta)` in the wave-frame in-plane
+//!    components, carried by `e^{-k lambda}`: the derivative of Love's stresses
+//!    with respect to nu has the transfer `-2 e^{-k l} (s^2, c^2, -c s)` in
+//!    (xx, yy, xy), `(c, s) = k / |k|`. (b) The slope `r1` of the difference at
+//!    k = 0 (both sides), carried by `k e^{-k lambda}`: Love's nu = 0 stresses give
+//!    `k l e^{-k l}` times `(c^2, s^2, c s)` with (a) added, times 1 in sigma_z and
+//!    times `i (c, s)` in the shears.
+//! 3. The remainder, O(k^2) at k -> 0 (a kernel tail ~ 1/r^4, so its periodic
+//!    images are negligible) and decaying at large k like `e^{-k lambda}` (the
+//!    reflection from the interface). It is summed on a periodic lattice of the
+//!    cell pitch: base wavenumbers `2 pi j / (M h)` plus their aliases `2 pi m / h`
+//!    until `e^{-k lambda}` is negligible, then one inverse 2-D FFT. Its four
+//!    wave-frame functions of |k| are tabulated once per depth on Chebyshev panels.
+//!    The cost per depth grows like `(h / lambda)^2` for coatings thinner than a
+//!    cell (the aliases resolve the sub-cell structure).
+//!
+//! With E1 = E2 and nu1 = nu2 the remainder and the carrier vanish (to rounding), and
+//! the kernels are Love's. At the interface each side uses its own transfer and its
+//! own nu: sigma_z, tau_xz and tau_yz are continuous (Love's are independent of nu),
+//! sigma_x, sigma_y and tau_xy jump as continuity of the in-plane strains demands.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+use realfft::num_complex::Complex;
+use realfft::RealFftPlanner;
+use rustfft::FftPlanner;
+
+use super::kernels::{
+    HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
+};
+use crate::body::coated_stress::{plane_stress_transfer, Side};
+use crate::body::quadrature::ChebyshevPanels;
+use crate::case::Elastic;
+
+/// Relative size of the last alias term kept: `e^{-k lambda}` below `e^{-ALIAS_DECAY}`.
+const ALIAS_DECAY: f64 = 40.0;
+/// Periodic box of the remainder: at least this many times the span of the offsets.
+const BOX_FACTOR: usize = 2;
+/// Chebyshev panel degree of the tabulated remainder.
+const PANEL_DEGREE: usize = 20;
+
+/// Stress kernels of a coated half-space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoatedStressKernels {
+    /// The coating (E1, nu1).
+    pub coating: Elastic,
+    /// Coating thickness h1 > 0.
+    pub thickness: f64,
+    /// The substrate (E2, nu2).
+    pub substrate: Elastic,
+    /// The side read at z = h1 exactly.
+    pub interface_side: Side,
+}
+
+impl CoatedStressKernels {
+    fn side(&self, z: f64) -> Side {
+        if z < self.thickness {
+            Side::Coating
+        } else if z > self.thickness {
+            Side::Substrate
+        } else {
+            self.interface_side
+        }
+    }
+
+    /// The long-wave in-plane stresses of the coating minus Love's, `(d_xi, d_eta)`:
+    /// zero on the substrate side.
+    fn long_wave_difference(&self, side: Side) -> (f64, f64) {
+        match side {
+            Side::Substrate => (0.0, 0.0),
+            Side::Coating => {
+                let t = plane_stress_transfer(
+                    self.coating,
+                    self.thickness,
+                    self.substrate,
+                    0.0,
+                    0.0,
+                    Side::Coating,
+                );
+                let nu = self.coating.poisson;
+                (t[0] + 1.0, t[1] + 2.0 * nu)
+            }
+        }
+    }
+
+    /// The wave-frame transfer `[xixi, etaeta, zz, xiz / i]` at k minus Love's and
+    /// the long-wave carrier `(d_xi, d_eta) e^{-k lambda}`.
+    fn difference(&self, side: Side, z: f64, carrier: (f64, f64, f64), k: f64) -> [f64; 4] {
+        let t = plane_stress_transfer(self.coating, self.thickness, self.substrate, k, z, side);
+        let nu = match side {
+            Side::Coating => self.coating.poisson,
+            Side::Substrate => self.substrate.poisson,
+        };
+        let kz = k * z;
+        let e = (-kz).exp();
+        let love = [-(1.0 - kz) * e, -2.0 * nu * e, -(1.0 + kz) * e, kz * e];
+        let (d_xi, d_eta, lambda) = carrier;
+        let ec = (-k * lambda).exp();
+        [
+            t[0] - love[0] - d_xi * ec,
+            t[1] - love[1] - d_eta * ec,
+            t[2] - love[2],
+            t[3] - love[3],
+        ]
+    }
+}
+
+/// `d/dk` at k = 0 of a function analytic in k (Richardson on two small steps).
+fn slope_at_zero(f: impl Fn(f64) -> [f64; 4], step: f64) -> [f64; 4] {
+    let (a, b) = (f(step), f(2.0 * step));
+    std::array::from_fn(|q| 2.0 * a[q] / step - b[q] / (2.0 * step))
+}
+
+impl StressKernels for CoatedStressKernels {
+    fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
+        let side = self.side(z);
+        let material = match side {
+            Side::Coating => self.coating,
+            Side::Substrate => self.substrate,
+        };
+        // 1. Love's kernels of the side's material.
+        HomogeneousStressKernels { material }.fill(z, lattice, table);
+        // The decay length of the difference from Love's at large k.
+        let lambda = match side {
+            Side::Coating => 2.0 * self.thickness - z,
+            Side::Substrate => z,
+        };
+        // 2. Carriers of the difference's long-wave limit and of its slope at k = 0,
+        // with transfers `e^{-k lambda}` and `k lambda e^{-k lambda}`.
+        let (d_xi, d_eta) = self.long_wave_difference(side);
+        let carrier = (d_xi, d_eta, lambda);
+        let r1 = slope_at_zero(
+            |k| self.difference(side, z, carrier, k),
+            1e-4 / (self.thickness + z),
+        );
+        let [al, be, ga, ep] = r1.map(|r| r / lambda);
+        let mut zero = InfluenceTable::default();
+        let mut half = InfluenceTable::default();
+        let with_nu = |poisson| Elastic {
+            poisson,
+            ..material
+        };
+        HomogeneousStressKernels {
+            material: with_nu(0.0),
+        }
+        .fill(lambda, lattice, &mut zero);
+        HomogeneousStressKernels {
+            material: with_nu(0.5),
+        }
+        .fill(lambda, lattice, &mut half);
+        for n in 0..lattice.cols * lattice.rows {
+            // A = -(G(1/2) - G(0)): transfer e^{-k l} (s^2, c^2, -c s) in (xx, yy, xy);
+            // B: transfer k l e^{-k l} (c^2, s^2, c s); G(0)'s shears: i k l e^{-k l} (c, s).
+            let a = |c: usize| -(half.values[c][n] - zero.values[c][n]);
+            let (axx, ayy, axy) = (a(0), a(1), a(3));
+            let (bxx, byy, bxy) = (
+                zero.values[0][n] + ayy,
+                zero.values[1][n] + axx,
+                zero.values[3][n] - axy,
+            );
+            let v = &mut table.values;
+            v[0][n] += d_xi * ayy + d_eta * axx + al * bxx + be * byy;
+            v[1][n] += d_xi * axx + d_eta * ayy + al * byy + be * bxx;
+            v[2][n] += ga * (bxx + byy);
+            v[3][n] += -(d_xi - d_eta) * axy + (al - be) * bxy;
+            v[4][n] += ep * zero.values[4][n];
+            v[5][n] += ep * zero.values[5][n];
+        }
+        // 3. The remainder, O(k^2) at k = 0, by a periodic lattice sum.
+        let remainder = remainder_on_lattice(lattice, lambda, self.thickness, &|k| {
+            let d = self.difference(side, z, carrier, k);
+            let e = k * (-k * lambda).exp();
+            std::array::from_fn(|q| d[q] - r1[q] * e)
+        });
+        for (t, r) in table.values.iter_mut().zip(remainder) {
+            for (v, d) in t.iter_mut().zip(r) {
+                *v += d;
+            }
+        }
+    }
+}
+
+/// One axis of the periodic lattice: box length `m` cells, the integer part of the
+/// first offset and its fraction (in cells), and the alias orders kept.
+struct Axis {
+    len: usize,
+    first: i64,
+    frac: f64,
+    aliases: i64,
+}
+
+impl Axis {
+    fn new(first: f64, count: usize, aliases: i64) -> Self {
+        let whole = first.floor();
+        let frac = first - whole;
+        let last = whole + count as f64;
+        let span = whole.abs().max(last.abs()) as usize + 1;
+        let len = (2 * BOX_FACTOR * span).next_power_of_two().max(16);
+        Axis {
+            len,
+            first: whole as i64,
+            frac,
+            aliases,
+        }
+    }
+
+    /// Base wavenumber index j (0..len) as a signed frequency, times 2 pi / len.
+    fn base(&self, j: usize) -> f64 {
+        let j = if j <= self.len / 2 {
+            j as f64
+        } else {
+            j as f64 - self.len as f64
+        };
+        2.0 * PI * j / self.len as f64
+    }
+}
+
+/// `sin(t) / t`.
+fn sinc(t: f64) -> f64 {
+    if t.abs() < 1e-8 {
+        1.0 - t * t / 6.0
+    } else {
+        t.sin() / t
+    }
+}
+
+/// The remainder kernel on `lattice`, `[sigma_x, ..., tau_yz]` per offset, from its
+/// wave-frame transfer `radial(k) = [xixi, etaeta, zz, xiz / i]` (k in 1/length),
+/// which decays at least like `e^{-k lambda}`.
+fn remainder_on_lattice(
+    lattice: &OffsetLattice,
+    lambda: f64,
+    thickness: f64,
+    radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
+) -> [Vec<f64>; COMPONENTS] {
+    let h = lattice.cell;
+    // Aliases: |k| up to where e^{-k lambda} is negligible (in cells: k h = theta).
+    let theta_max = ALIAS_DECAY * h / lambda.max(1e-300);
+    // Alias m covers theta in [2 pi m - pi, 2 pi m + pi].
+    let aliases = (((theta_max + PI) / (2.0 * PI)).floor() as i64).clamp(0, 64);
+    let ax = Axis::new(lattice.x_first, lattice.cols, aliases);
+    let ay = Axis::new(lattice.y_first, lattice.rows, aliases);
+    // Theta = k h of the table: up to the largest alias, capped by the decay.
+    let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max + PI);
+    // The longest length in the transfer's exponentials is about z + 2 h1 <= 2 lambda + 2 h1.
+    let radial_table = RadialTable::new(theta_top, h, 2.0 * (lambda + thickness), radial);
+
+    // Per axis: for each base index and alias order, theta = k h, sinc and the phase
+    // of the fractional offset.
+    struct AxisTerms {
+        theta: Vec<f64>,
+        weight: Vec<Complex<f64>>,
+    }
+    let terms = |a: &Axis| -> (Vec<AxisTerms>, usize) {
+        let n_alias = (2 * a.aliases + 1) as usize;
+        let per_base = (0..a.len)
+            .map(|j| {
+                let mut theta = Vec::with_capacity(n_alias);
+                let mut weight = Vec::with_capacity(n_alias);
+                for m in -a.aliases..=a.aliases {
+                    let t = a.base(j) + 2.0 * PI * m as f64;
+                    theta.push(t);
+                    weight.push(Complex::from_polar(sinc(t / 2.0), t * a.frac));
+                }
+                AxisTerms { theta, weight }
+            })
+            .collect();
+        (per_base, n_alias)
+    };
+    let (tx, _) = terms(&ax);
+    let (ty, _) = terms(&ay);
+    let theta_cut = theta_max + PI;
+    let half_x = ax.len / 2 + 1;
+    let norm = 1.0 / (ax.len * ay.len) as f64;
+
+    // Spectrum on the half plane jx = 0..=len/2, all jy; component-major rows.
+    let mut spectra: Vec<[Vec<Complex<f64>>; COMPONENTS]> = (0..ay.len)
+        .into_par_iter()
+        .map(|jy| {
+            let mut row: [Vec<Complex<f64>>; COMPONENTS] =
+                std::array::from_fn(|_| vec![Complex::default(); half_x]);
+            let y = &ty[jy];
+            for jx in 0..half_x {
+                let x = &tx[jx];
+                let mut acc = [Complex::<f64>::default(); COMPONENTS];
+                for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
+                    for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
+                        let theta = tx_.hypot(ty_);
+                        if theta > theta_cut {
+                            continue;
+                        }
+                        let r = radial_table.eval(theta);
+                        let (c, s) = if theta > 0.0 {
+                            (tx_ / theta, ty_ / theta)
+                        } else {
+                            (1.0, 0.0)
+                        };
+                        let w = wx * wy;
+                        let (xixi, etaeta, zz, xiz) = (r[0], r[1], r[2], r[3]);
+                        let shear = Complex::new(0.0, xiz) * w;
+                        acc[0] += w * (xixi * c * c + etaeta * s * s);
+                        acc[1] += w * (xixi * s * s + etaeta * c * c);
+                        acc[2] += w * zz;
+                        acc[3] += w * ((xixi - etaeta) * c * s);
+                        acc[4] += shear * c;
+                        acc[5] += shear * s;
+                    }
+                }
+                for (dst, a) in row.iter_mut().zip(acc) {
+                    dst[jx] = a * norm;
+                }
+            }
+            row
+        })
+        .collect();
+
+    // Inverse transform along y (complex, per column jx), then along x (real output).
+    let mut planner = FftPlanner::<f64>::new();
+    let fft_y = planner.plan_fft_inverse(ay.len);
+    let mut real_planner = RealFftPlanner::<f64>::new();
+    let fft_x = real_planner.plan_fft_inverse(ax.len);
+    let out: Vec<Vec<f64>> = (0..COMPONENTS)
+        .into_par_iter()
+        .map(|c| {
+            let mut column = vec![Complex::default(); ay.len];
+            let mut grid = vec![Complex::default(); ay.len * half_x];
+            for jx in 0..half_x {
+                for (jy, v) in column.iter_mut().enumerate() {
+                    *v = spectra[jy][c][jx];
+                }
+                fft_y.process(&mut column);
+                for (ny, v) in column.iter().enumerate() {
+                    grid[ny * half_x + jx] = *v;
+                }
+            }
+            let mut line = vec![0.0; ax.len];
+            let mut values = Vec::with_capacity(lattice.cols * lattice.rows);
+            for m in 0..lattice.rows {
+                let ny = (ay.first + m as i64).rem_euclid(ay.len as i64) as usize;
+                let spec = &mut grid[ny * half_x..(ny + 1) * half_x];
+                // The alias sums are periodic in the base wavenumber only up to the
+                // truncation (1e-17): the Nyquist and zero columns are real then.
+                spec[0].im = 0.0;
+                spec[half_x - 1].im = 0.0;
+                fft_x
+                    .process(spec, &mut line)
+                    .expect("FFT lengths are fixed by the plan");
+                for k in 0..lattice.cols {
+                    let nx = (ax.first + k as i64).rem_euclid(ax.len as i64) as usize;
+                    values.push(line[nx]);
+                }
+            }
+            values
+        })
+        .collect();
+    spectra.clear();
+    let mut it = out.into_iter();
+    std::array::from_fn(|_| it.next().unwrap_or_default())
+}
+
+/// The four wave-frame functions of `theta = k h` on Chebyshev panels.
+struct RadialTable {
+    panels: [ChebyshevPanels; 4],
+}
+
+impl RadialTable {
+    /// Tabulates `radial(theta / h)` on `[0, theta_top]` with panels no wider than
+    /// the scale `h / length` of its exponentials.
+    fn new(theta_top: f64, h: f64, length: f64, radial: &(dyn Fn(f64) -> [f64; 4] + Sync)) -> Self {
+        let width = (2.0 * h / length.max(1e-300)).min(PI);
+        let panels = ((theta_top / width).ceil() as usize).max(1);
+        let hi = panels as f64 * width;
+        let points = ChebyshevPanels::points(0.0, hi, panels, PANEL_DEGREE);
+        let values: Vec<[f64; 4]> = points.par_iter().map(|&t| radial(t / h)).collect();
+        let panels = std::array::from_fn(|q| {
+            let v: Vec<f64> = values.iter().map(|r| r[q]).collect();
+            ChebyshevPanels::from_values(0.0, hi, panels, PANEL_DEGREE, &v)
+        });
+        RadialTable { panels }
+    }
+
+    fn eval(&self, theta: f64) -> [f64; 4] {
+        std::array::from_fn(|q| self.panels[q].eval(theta))
+    }
+}
