@@ -150,7 +150,7 @@ fn one_cell_kernel_matches_direct_fourier_quadrature() {
                         coating.young
                     );
                     // Stresses per unit pressure on the cell: the self terms are
-                    // 0.2-0.9. Measured: at most 4.1e-8 absolute.
+                    // 0.2-0.9. Measured: at most 9.4e-8 absolute.
                     assert!(
                         (got - want).abs() < 2e-7,
                         "E1 {} z {z} {side:?} ({i}, {j}) component {c}: {got} vs {want}",
