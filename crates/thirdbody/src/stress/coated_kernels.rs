@@ -53,7 +53,7 @@ use crate::body::quadrature::ChebyshevPanels;
 use crate::case::Elastic;
 
 /// Relative size of the last alias term kept: `e^{-k lambda}` below `e^{-ALIAS_DECAY}`.
-const ALIAS_DECAY: f64 = 40.0;
+const ALIAS_DECAY: f64 = 32.0;
 /// Periodic box of the remainder: at least this many times the span of the offsets.
 /// Measured on a coated Hertz case (E1/E2 = 3, h1 = a/2, 64 x 64): the stresses
 /// change by 1.7e-4 p0 from 2 to 8, 3e-5 from 3 to 8, 7e-6 from 4 to 8.
