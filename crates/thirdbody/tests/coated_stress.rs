@@ -277,3 +277,68 @@ fn interface_tractions_and_in_plane_strains_are_continuous() {
         assert!(gap > 0.05 * p_max, "sigma_x does not jump: {gap}");
     }
 }
+
+/// Largest difference between two fields of the same section, over all components.
+fn max_difference(a: &thirdbody::stress::StressField, b: &thirdbody::stress::StressField) -> f64 {
+    (0..6)
+        .flat_map(|c| {
+            a.components[c]
+                .iter()
+                .zip(&b.components[c])
+                .map(|(x, y)| (x - y).abs())
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn thin_and_thick_coatings_tend_to_the_homogeneous_bodies() {
+    // Love's closed form for the limits: a coating much thicker than the contact is
+    // the coating's half-space near the surface; a vanishing coating leaves the
+    // substrate's stresses below it, with a difference of order h1.
+    let grid = Grid::centred(40, 40, 0.05, [0.0, 0.0]).unwrap();
+    let p = hertz_pressure(&grid, 0.6);
+    let (coating, substrate) = (elastic(3.0, 0.25), elastic(1.0, 0.35));
+    let shallow = Section::XzPlane {
+        y: 0.0,
+        depths: vec![0.0, 0.1, 0.3, 0.6],
+    };
+    let alone = stresses(&grid, &p, &Body::Homogeneous(coating), &shallow).unwrap();
+    let mut thick = Vec::new();
+    for h1 in [5.0, 10.0] {
+        let body = Body::Coated {
+            coating,
+            thickness: h1,
+            substrate,
+        };
+        thick.push(max_difference(
+            &stresses(&grid, &p, &body, &shallow).unwrap(),
+            &alone,
+        ));
+    }
+    println!("thick coating: {thick:?}");
+    assert!(thick[1] < 0.01, "{thick:?}");
+    assert!(thick[1] < 0.6 * thick[0], "{thick:?}");
+
+    let deep = Section::XzPlane {
+        y: 0.0,
+        depths: vec![0.3, 0.6, 0.9],
+    };
+    let below = stresses(&grid, &p, &Body::Homogeneous(substrate), &deep).unwrap();
+    let mut thin = Vec::new();
+    for h1 in [0.02, 0.01, 0.005, 0.0025] {
+        let body = Body::Coated {
+            coating,
+            thickness: h1,
+            substrate,
+        };
+        thin.push(max_difference(
+            &stresses(&grid, &p, &body, &deep).unwrap(),
+            &below,
+        ));
+    }
+    println!("thin coating: {thin:?}");
+    for w in thin.windows(2) {
+        let ratio = w[1] / w[0];
+        assert!((0.4..0.6).contains(&ratio), "{thin:?}");
+    }
+}
