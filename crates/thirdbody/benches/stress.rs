@@ -44,6 +44,35 @@ fn bench(c: &mut Criterion) {
     group.bench_function("block_128x128x64", |b| {
         b.iter(|| black_box(stresses(&grid, &p, &body, &section).unwrap()))
     });
+
+    // Coated body (E1/E2 = 3): a thick coating (h1 = a/2) and a thin one (h1 = a/40,
+    // the paper's Fig. 11a ratio), XZ section as above and the interface plane.
+    let grid = Grid::centred(256, 256, 1.0 / 64.0, [0.0, 0.0]).unwrap();
+    let p = hertz(&grid, 1.0);
+    let depths: Vec<f64> = (0..128).map(|k| 2.0 * k as f64 / 127.0).collect();
+    let xz = Section::XzPlane { y: 0.0, depths };
+    for (name, h1) in [("thick", 0.5), ("thin", 0.025)] {
+        let coated = Body::Coated {
+            coating: Elastic {
+                young: 3.0,
+                poisson: 0.3,
+            },
+            thickness: h1,
+            substrate: Elastic {
+                young: 1.0,
+                poisson: 0.3,
+            },
+        };
+        group.bench_function(format!("coated_{name}_xz_256x128_from_256x256"), |b| {
+            b.iter(|| black_box(stresses(&grid, &p, &coated, &xz).unwrap()))
+        });
+        let interface = Section::Interface {
+            side: thirdbody::stress::Side::Coating,
+        };
+        group.bench_function(format!("coated_{name}_interface_256x256"), |b| {
+            b.iter(|| black_box(stresses(&grid, &p, &coated, &interface).unwrap()))
+        });
+    }
     group.finish();
 }
 
