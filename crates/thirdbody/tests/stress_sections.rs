@@ -196,16 +196,18 @@ fn bad_requests_name_the_field() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("pressure[3]"), "{e}");
-    // A coated body is not supported yet: a clear error, not a wrong answer.
-    let coated = Body::Coated {
-        coating: MAT,
-        thickness: 0.1,
-        substrate: MAT,
-    };
-    let e = stresses(&grid, &p, &coated, &Section::Plane { z: 0.0 })
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("coated") && e.contains("not implemented"), "{e}");
+    // An interface section needs a coated body: a clear error, not an empty field.
+    let e = stresses(
+        &grid,
+        &p,
+        &body,
+        &Section::Interface {
+            side: thirdbody::stress::Side::Coating,
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("stress.sections") && e.contains("coated body"), "{e}");
     // A bad material.
     let bad = Body::Homogeneous(Elastic {
         young: 1.0,
