@@ -1,7 +1,11 @@
-//! Library side of the `thirdbody` command-line front end: the pieces the binary and its
-//! integration tests share (plots so far). Numerics live in the `thirdbody` crate; this
-//! crate only turns its results into files.
+//! Library side of the `thirdbody` command-line front end: the pieces the binary, its
+//! integration tests and benches share (plots, height-map files, the summary of a
+//! solve, parameter sweeps). Numerics live in the `thirdbody` crate; this crate turns
+//! case files into cases and results into files.
 
 #![warn(missing_docs)]
 
+pub mod heightmap;
 pub mod plot;
+pub mod summary;
+pub mod sweep;

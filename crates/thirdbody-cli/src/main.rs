@@ -6,7 +6,6 @@
 //! one line `error: <message>` on stderr that names the field and what is
 //! allowed; 1 solver failure or I/O error.
 
-mod heightmap;
 mod outputs;
 mod progress;
 mod report;
@@ -21,6 +20,8 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use thirdbody::case_file::{parse_case_file, CaseFile};
 use thirdbody::Parallelism;
+use thirdbody_cli::heightmap;
+use thirdbody_cli::sweep::command::{self as sweep, MergeArgs, SweepArgs};
 
 #[derive(Parser)]
 #[command(
@@ -37,6 +38,10 @@ struct Cli {
 enum Command {
     /// Solve one case file and write its outputs.
     Solve(SolveArgs),
+    /// Solve a case over the Cartesian product of varied keys (docs/sweeps.md).
+    Sweep(SweepArgs),
+    /// Join the folders of a sharded sweep (docs/sweeps.md).
+    Merge(MergeArgs),
 }
 
 #[derive(Args)]
@@ -81,6 +86,9 @@ fn main() -> ExitCode {
 
 /// 2 for bad input, 1 for everything else.
 fn exit_code(e: &anyhow::Error) -> u8 {
+    if sweep::is_bad_input(e) {
+        return 2;
+    }
     for cause in e.chain() {
         if cause.is::<BadInput>() {
             return 2;
@@ -101,6 +109,8 @@ fn exit_code(e: &anyhow::Error) -> u8 {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Solve(args) => solve(&args),
+        Command::Sweep(args) => sweep::sweep_command(&args),
+        Command::Merge(args) => sweep::merge_command(&args),
     }
 }
 

@@ -11,43 +11,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use ndarray::Array2;
-use serde_json::{json, Map, Value};
+use serde_json::Value;
 use thirdbody::{Case, Grid, Solution, Units};
 
 use crate::staging::Staging;
 use thirdbody_cli::plot::{self, Series};
-
-/// The summary of a solve as written to `summary.json`: the library's
-/// [`thirdbody::Summary`] plus the solver report, the wall time of kernel set-up
-/// and solve, the units and the window.
-pub fn summary_json(case: &Case, solution: &Solution, solve_seconds: f64) -> Result<Value> {
-    let Value::Object(mut map) = serde_json::to_value(solution.summary())? else {
-        anyhow::bail!("the summary did not serialise to an object");
-    };
-    let g = &solution.grid;
-    let [wx, wy] = g.half_widths();
-    let [cx, cy] = g.centre();
-    let info = &solution.info;
-    let extra: Map<String, Value> = json!({
-        "solve_seconds": solve_seconds,
-        "units": match case.units {
-            Units::Dimensionless => "dimensionless",
-            Units::Si => "si",
-        },
-        "method": info.method,
-        "linear_iterations": info.linear_iterations,
-        "windows": info.windows,
-        "window_x_min": cx - wx,
-        "window_x_max": cx + wx,
-        "window_y_min": cy - wy,
-        "window_y_max": cy + wy,
-    })
-    .as_object()
-    .cloned()
-    .unwrap_or_default();
-    map.extend(extra);
-    Ok(Value::Object(map))
-}
+pub use thirdbody_cli::summary::summary_json;
 
 /// Axis and colour-bar labels in the case's units.
 struct Labels {
