@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 
-use super::folder::{read_record, read_sweep_file, write_record, Folder, Record};
+use super::folder::{read_record, read_sweep_file, record_path, write_atomic, Folder, Record};
 use super::run::finish;
 use super::SweepError;
 
@@ -80,7 +80,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeReport> {
     }
     let folder = Folder::open(out, &spec)?;
     let mut to_write = Vec::new();
-    for (record, _) in chosen.iter().flatten() {
+    for (record, from) in chosen.iter().flatten() {
         match read_record(folder.dir(), &record.case) {
             Some(existing) if existing.same_result(record) => {}
             Some(_) => {
@@ -91,11 +91,13 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeReport> {
                 ))
                 .into())
             }
-            None => to_write.push(record),
+            None => to_write.push((record, *from)),
         }
     }
-    for record in to_write {
-        write_record(folder.dir(), record)?;
+    // Copied byte for byte: a record is never re-serialised.
+    for (record, from) in to_write {
+        let bytes = std::fs::read(record_path(from, &record.case))?;
+        write_atomic(&record_path(folder.dir(), &record.case), &bytes)?;
     }
     let (collected, results, plot) = finish(folder.dir(), &spec)?;
     Ok(MergeReport {
