@@ -5,6 +5,9 @@
 //! summary. Exit codes: 0 success; 2 bad input (the case or a height map), with
 //! one line `error: <message>` on stderr that names the field and what is
 //! allowed; 1 solver failure or I/O error.
+//!
+//! `thirdbody sweep` and `thirdbody merge` run parameter sweeps (docs/sweeps.md);
+//! they live in [`thirdbody_cli::sweep`], with the same exit codes.
 
 mod outputs;
 mod progress;

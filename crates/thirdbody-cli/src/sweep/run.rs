@@ -1,6 +1,6 @@
 //! Running a sweep: the cases of this shard that have no record yet are solved in
 //! parallel on a rayon pool of `threads` threads (one case per thread, each solve's
-//! FFTs sequential, which scales better than parallel FFTs on these grid sizes), each
+//! FFTs sequential: cases are independent, so nothing is shared but the pool), each
 //! finished case is written at once as its record, and `results.csv` and the mu plot
 //! are rebuilt from all records at the end.
 //!
