@@ -271,7 +271,9 @@ fn stress_request_summary_on_the_solver_hertz_pressure() {
         depth_points: 61,
         ..StressRequest::default()
     };
-    let results = request.compute(&case.body, &solution).unwrap();
+    let results = request
+        .compute(&case.body, &solution.grid, &solution.pressure)
+        .unwrap();
     let names: Vec<&str> = results
         .sections
         .iter()
@@ -337,7 +339,10 @@ fn interface_summary_of_a_coating_of_the_substrate_material() {
         sections: Some(vec![SectionKind::Interface]),
         ..StressRequest::default()
     };
-    let s = request.compute(&coated, &solution).unwrap().summary;
+    let s = request
+        .compute(&coated, &solution.grid, &solution.pressure)
+        .unwrap()
+        .summary;
     let plane = solution.stresses(&BODY, &Section::Plane { z: h1 }).unwrap();
     let expected = plane.components[0]
         .iter()

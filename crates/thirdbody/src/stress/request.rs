@@ -13,7 +13,7 @@
 use super::{stresses, Section, Side, StressField};
 use crate::case::Body;
 use crate::error::{Error, Result};
-use crate::solution::Solution;
+use crate::grid::Grid;
 
 /// Default number of depths of the XZ section and the block.
 pub const DEFAULT_DEPTH_POINTS: usize = 64;
@@ -97,18 +97,25 @@ pub struct NamedSection {
 pub struct StressSummary {
     /// Largest maximum shear `tau1 = (s1 - s3)/2` in the XZ section (>= 0; the paper
     /// prints it negative).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tau1_max: Option<f64>,
     /// x of that maximum.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tau1_max_x: Option<f64>,
     /// Depth z of that maximum.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tau1_max_z: Option<f64>,
     /// Most compressive sigma_x on the surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub sigma_x_min: Option<f64>,
     /// Most tensile sigma_x on the surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub sigma_x_max: Option<f64>,
     /// Most tensile sigma_x on the coating side of the interface.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_sigma_x_max_coating: Option<f64>,
     /// Most tensile sigma_x on the substrate side of the interface.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_sigma_x_max_substrate: Option<f64>,
 }
 
@@ -214,10 +221,18 @@ impl StressRequest {
             .collect()
     }
 
-    /// The concrete sections for `solution` on `body`.
-    pub fn sections(&self, body: &Body, solution: &Solution) -> Result<Vec<NamedSection>> {
+    /// The concrete sections under `pressure` (one value per cell of `grid`) on `body`.
+    pub fn sections(
+        &self,
+        body: &Body,
+        grid: &Grid,
+        pressure: &[f64],
+    ) -> Result<Vec<NamedSection>> {
         self.validate(body)?;
-        let depths = self.depths(contact_half_length(solution)?);
+        let depths = match self.max_depth {
+            Some(_) => self.depths(0.0),
+            None => self.depths(contact_half_length(grid, pressure)?),
+        };
         let mut out = Vec::new();
         let mut push = |name: &str, section: Section| {
             out.push(NamedSection {
@@ -263,13 +278,14 @@ impl StressRequest {
         Ok(out)
     }
 
-    /// Computes every requested section of `solution` (on `body`, the case's body)
-    /// and the summary.
-    pub fn compute(&self, body: &Body, solution: &Solution) -> Result<StressResults> {
-        let named = self.sections(body, solution)?;
+    /// Computes every requested section under `pressure` (one value per cell of
+    /// `grid`, e.g. a [`crate::Solution`]'s) on `body` (the case's body), and the
+    /// summary.
+    pub fn compute(&self, body: &Body, grid: &Grid, pressure: &[f64]) -> Result<StressResults> {
+        let named = self.sections(body, grid, pressure)?;
         let mut sections = Vec::with_capacity(named.len());
         for n in named {
-            let field = stresses(&solution.grid, &solution.pressure, body, &n.section)?;
+            let field = stresses(grid, pressure, body, &n.section)?;
             sections.push((n, field));
         }
         let summary = summarise(&sections);
@@ -278,10 +294,19 @@ impl StressRequest {
 }
 
 /// The larger half-extent of the loaded cells along x and y (cell edges).
-fn contact_half_length(solution: &Solution) -> Result<f64> {
-    let s = solution.summary();
-    let half = 0.5 * (s.contact_x_max - s.contact_x_min).max(s.contact_y_max - s.contact_y_min);
-    if half.is_finite() && half > 0.0 {
+fn contact_half_length(grid: &Grid, pressure: &[f64]) -> Result<f64> {
+    let (mut xs, mut ys) = ((usize::MAX, 0), (usize::MAX, 0));
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            if pressure.get(grid.index(i, j)).is_some_and(|&p| p > 0.0) {
+                xs = (xs.0.min(i), xs.1.max(i));
+                ys = (ys.0.min(j), ys.1.max(j));
+            }
+        }
+    }
+    let cells = |(lo, hi): (usize, usize)| if lo > hi { 0 } else { hi - lo + 1 };
+    let half = 0.5 * grid.cell * cells(xs).max(cells(ys)) as f64;
+    if half > 0.0 {
         Ok(half)
     } else {
         Err(Error::invalid(
