@@ -4,6 +4,7 @@
 //! solves it, computes the stresses its `[stress]` section asks for, writes the
 //! outputs into DIR (docs/outputs.md) and prints a short summary.
 //! `thirdbody stress DIR` computes stresses for a case already solved into DIR.
+//! `thirdbody reproduce --out DIR` recomputes the paper's figures.
 //! Exit codes: 0 success; 2 bad input (the case or a height map), with
 //! one line `error: <message>` on stderr that names the field and what is
 //! allowed; 1 solver failure or I/O error.
@@ -12,6 +13,7 @@ mod heightmap;
 mod outputs;
 mod progress;
 mod report;
+mod reproduce;
 mod staging;
 mod stress_command;
 mod stress_outputs;
@@ -43,6 +45,8 @@ enum Command {
     Solve(SolveArgs),
     /// Compute subsurface stresses for a case already solved into a folder.
     Stress(stress_command::StressArgs),
+    /// Recompute every result figure of the paper (Figs. 2-12) with a report.
+    Reproduce(reproduce::ReproduceArgs),
 }
 
 #[derive(Args)]
@@ -112,6 +116,7 @@ fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Solve(args) => solve(&args),
         Command::Stress(args) => stress_command::run(&args),
+        Command::Reproduce(args) => reproduce::run(&args),
     }
 }
 
