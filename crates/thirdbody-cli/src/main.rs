@@ -1,8 +1,11 @@
 //! `thirdbody`: the command line of the thirdbody contact solver.
 //!
 //! `thirdbody solve CASE.toml --out DIR` reads a case file (docs/case-file.md),
-//! solves it, writes the outputs into DIR (docs/outputs.md) and prints a short
-//! summary. Exit codes: 0 success; 2 bad input (the case or a height map), with
+//! solves it, computes the stresses its `[stress]` section asks for, writes the
+//! outputs into DIR (docs/outputs.md) and prints a short summary.
+//! `thirdbody stress DIR` computes stresses for a case already solved into DIR.
+//! `thirdbody reproduce --out DIR` recomputes the paper's figures.
+//! Exit codes: 0 success; 2 bad input (the case or a height map), with
 //! one line `error: <message>` on stderr that names the field and what is
 //! allowed; 1 solver failure or I/O error.
 //!
@@ -12,7 +15,10 @@
 mod outputs;
 mod progress;
 mod report;
+mod reproduce;
 mod staging;
+mod stress_command;
+mod stress_outputs;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -41,6 +47,10 @@ struct Cli {
 enum Command {
     /// Solve one case file and write its outputs.
     Solve(SolveArgs),
+    /// Compute subsurface stresses for a case already solved into a folder.
+    Stress(stress_command::StressArgs),
+    /// Recompute every result figure of the paper (Figs. 2-12) with a report.
+    Reproduce(reproduce::ReproduceArgs),
     /// Solve a case over the Cartesian product of varied keys (docs/sweeps.md).
     Sweep(SweepArgs),
     /// Join the folders of a sharded sweep (docs/sweeps.md).
@@ -60,12 +70,16 @@ struct SolveArgs {
     /// Threads for the solve's FFTs (default: all cores).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     threads: Option<u16>,
+    /// Data formats to write: a comma-separated list of npy, csv, vtk (default all;
+    /// summary.json and the plots are always written).
+    #[arg(long, value_name = "LIST", value_parser = outputs::parse_formats)]
+    format: Option<outputs::Formats>,
 }
 
 /// A bad input found by the command line itself (unreadable case file, bad
 /// arguments); exits with code 2 like the library's input errors.
 #[derive(Debug)]
-struct BadInput(String);
+pub(crate) struct BadInput(pub(crate) String);
 
 impl std::fmt::Display for BadInput {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -112,24 +126,34 @@ fn exit_code(e: &anyhow::Error) -> u8 {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Solve(args) => solve(&args),
+        Command::Stress(args) => stress_command::run(&args),
+        Command::Reproduce(args) => reproduce::run(&args),
         Command::Sweep(args) => sweep::sweep_command(&args),
         Command::Merge(args) => sweep::merge_command(&args),
     }
 }
 
 /// Reads and validates a case file; height maps are read relative to its folder.
-fn read_case(path: &Path) -> Result<CaseFile> {
+/// Returns the parsed case and its text.
+fn read_case(path: &Path) -> Result<(CaseFile, String)> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| BadInput(format!("cannot read the case file {}: {e}", path.display())))?;
     let base = path.parent().unwrap_or(Path::new("."));
     let file = parse_case_file(&text, &mut |file, cell_size| {
         heightmap::load(base, file, cell_size)
     })?;
-    Ok(file)
+    Ok((file, text))
 }
 
 fn solve(args: &SolveArgs) -> Result<()> {
-    let CaseFile { case, mut solver } = read_case(&args.case)?;
+    let (
+        CaseFile {
+            case,
+            mut solver,
+            stress,
+        },
+        case_text,
+    ) = read_case(&args.case)?;
     if args.out.exists() && !args.out.is_dir() {
         return Err(BadInput(format!(
             "--out {} exists and is not a folder",
@@ -153,14 +177,30 @@ fn solve(args: &SolveArgs) -> Result<()> {
     spinner.finish();
     let solution = result?;
 
-    let summary = outputs::summary_json(&case, &solution, solve_seconds)?;
-    outputs::write_all(&args.out, &case, &solution, &summary)?;
+    let stress = stress
+        .map(|request| request.compute(&case.body, &solution.grid, &solution.pressure))
+        .transpose()?;
+    let summary = outputs::summary_json(&case, &solution, solve_seconds, stress.as_ref())?;
+    outputs::write_all(
+        &args.out,
+        &outputs::SolveOutputs {
+            case_text: &case_text,
+            case: &case,
+            solution: &solution,
+            summary: &summary,
+            stress: stress.as_ref(),
+            formats: args.format.unwrap_or_default(),
+        },
+    )?;
     if !args.quiet {
         println!(
             "{}: {}",
             args.case.display(),
             report::human_summary(&case, &solution, solve_seconds)
         );
+        if let Some(results) = &stress {
+            println!("{}", report::stress_summary(&results.summary));
+        }
         println!("outputs in {}", args.out.display());
     }
     Ok(())

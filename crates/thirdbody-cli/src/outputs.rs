@@ -1,9 +1,12 @@
 //! The files a solve writes into its output folder (docs/outputs.md): the summary
-//! (`summary.json`), grid fields as NPY arrays of shape (ny, nx) with rows along y
-//! (`pressure.npy`, `body_displacement.npy`, `gap.npy`, and with a layer
-//! `compliance.npy` and `layer_displacement.npy`), the pressure as CSV
-//! (`x,y,pressure`, one line per cell) and the plots. All are staged and renamed
-//! into place together (see [`crate::staging`]).
+//! (`summary.json`, always), a copy of the case file (`case.toml`, which
+//! `thirdbody stress` reads back), grid fields as NPY arrays of shape (ny, nx) with
+//! rows along y (`pressure.npy`, `body_displacement.npy`, `gap.npy`, and with a
+//! layer `compliance.npy` and `layer_displacement.npy`), the pressure as CSV
+//! (`x,y,pressure`, one line per cell), the surface fields as VTK image data
+//! (`surface.vti`), the stresses asked for (see [`crate::stress_outputs`]) and the
+//! plots. `--format` chooses among NPY, CSV and VTK. All are staged and renamed into
+//! place together (see [`crate::staging`]).
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -12,11 +15,74 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use ndarray::Array2;
 use serde_json::Value;
+use thirdbody::stress::StressResults;
 use thirdbody::{Case, Grid, Solution, Units};
 
 use crate::staging::Staging;
+use crate::stress_outputs;
 use thirdbody_cli::plot::{self, Series};
-pub use thirdbody_cli::summary::summary_json;
+use thirdbody_cli::vtk;
+
+/// Which data formats to write (`--format npy,csv,vtk`; all by default). The JSON
+/// summary and the plots are always written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Formats {
+    /// NPY arrays.
+    pub npy: bool,
+    /// CSV tables.
+    pub csv: bool,
+    /// VTK image data (`.vti`).
+    pub vtk: bool,
+}
+
+impl Default for Formats {
+    fn default() -> Self {
+        Formats {
+            npy: true,
+            csv: true,
+            vtk: true,
+        }
+    }
+}
+
+/// Parses `--format`: a comma-separated list of `npy`, `csv`, `vtk`.
+pub fn parse_formats(text: &str) -> std::result::Result<Formats, String> {
+    let mut f = Formats {
+        npy: false,
+        csv: false,
+        vtk: false,
+    };
+    for word in text.split(',').map(str::trim) {
+        match word.to_ascii_lowercase().as_str() {
+            "npy" => f.npy = true,
+            "csv" => f.csv = true,
+            "vtk" | "vti" => f.vtk = true,
+            _ => {
+                return Err(format!(
+                    "unknown format {word:?}: give a comma-separated list of npy, csv, vtk"
+                ))
+            }
+        }
+    }
+    Ok(f)
+}
+
+/// The summary of a solve as written to `summary.json`: the library part's summary
+/// ([`thirdbody_cli::summary::summary_json`]: the library's [`thirdbody::Summary`] plus
+/// the solver report, the wall time of kernel set-up and solve, the units and the
+/// window), plus, if asked for, the `stress` object.
+pub fn summary_json(
+    case: &Case,
+    solution: &Solution,
+    solve_seconds: f64,
+    stress: Option<&StressResults>,
+) -> Result<Value> {
+    let mut summary = thirdbody_cli::summary::summary_json(case, solution, solve_seconds)?;
+    if let (Some(results), Value::Object(map)) = (stress, &mut summary) {
+        map.insert("stress".into(), stress_outputs::summary_json(results)?);
+    }
+    Ok(summary)
+}
 
 /// Axis and colour-bar labels in the case's units.
 struct Labels {
@@ -43,34 +109,70 @@ fn labels(units: Units) -> Labels {
     }
 }
 
-/// Writes every output of a solve into `dir`; nothing is left there on failure.
-pub fn write_all(
-    dir: &Path,
-    case: &Case,
-    solution: &Solution,
-    summary: &Value,
-) -> Result<Vec<PathBuf>> {
-    let g = &solution.grid;
-    let p = &solution.pressure;
-    let mut out = Staging::new(dir)?;
+/// Everything one solve writes.
+pub struct SolveOutputs<'a> {
+    /// The case file's text, saved as `case.toml`.
+    pub case_text: &'a str,
+    /// The case.
+    pub case: &'a Case,
+    /// Its solution.
+    pub solution: &'a Solution,
+    /// `summary.json`'s content.
+    pub summary: &'a Value,
+    /// Stresses, if the case asked for them.
+    pub stress: Option<&'a StressResults>,
+    /// Data formats to write.
+    pub formats: Formats,
+}
+
+/// Stages `summary.json` (pretty-printed).
+pub fn write_summary(out: &mut Staging, summary: &Value) -> Result<()> {
     out.write("summary.json", |path| {
         let mut text = serde_json::to_string_pretty(summary)?;
         text.push('\n');
         Ok(std::fs::write(path, text)?)
-    })?;
-    out.write("pressure.npy", |path| write_field_npy(path, g, p))?;
-    out.write("pressure.csv", |path| write_pressure_csv(path, g, p))?;
-    out.write("body_displacement.npy", |path| {
-        write_field_npy(path, g, &solution.body_displacement)
-    })?;
-    out.write("gap.npy", |path| write_field_npy(path, g, &solution.gap))?;
+    })
+}
+
+/// Writes every output of a solve into `dir`; nothing is left there on failure.
+pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
+    let (case, solution) = (o.case, o.solution);
+    let g = &solution.grid;
+    let p = &solution.pressure;
+    let mut out = Staging::new(dir)?;
+    write_summary(&mut out, o.summary)?;
+    out.write("case.toml", |path| Ok(std::fs::write(path, o.case_text)?))?;
+    let mut fields: Vec<(&str, &[f64])> = vec![
+        ("pressure", p),
+        ("body_displacement", &solution.body_displacement),
+        ("gap", &solution.gap),
+    ];
     if let Some(c) = &solution.compliance {
-        out.write("compliance.npy", |path| write_field_npy(path, g, c))?;
+        fields.push(("compliance", c));
     }
     if let Some(w3) = &solution.layer_displacement {
-        out.write("layer_displacement.npy", |path| {
-            write_field_npy(path, g, w3)
+        fields.push(("layer_displacement", w3));
+    }
+    if o.formats.npy {
+        for (name, field) in &fields {
+            out.write(&format!("{name}.npy"), |path| {
+                write_field_npy(path, g, field)
+            })?;
+        }
+    }
+    if o.formats.csv {
+        out.write("pressure.csv", |path| write_pressure_csv(path, g, p))?;
+    }
+    if o.formats.vtk {
+        out.write("surface.vti", |path| {
+            let xs: Vec<f64> = (0..g.nx).map(|i| g.x(i)).collect();
+            let ys: Vec<f64> = (0..g.ny).map(|j| g.y(j)).collect();
+            let lattice = vtk::Lattice::from_axes([&xs, &ys, &[0.0]], g.cell)?;
+            vtk::write_image_data(path, &lattice, &fields)
         })?;
+    }
+    if let Some(results) = o.stress {
+        stress_outputs::write_stress(&mut out, results, case.units, o.formats)?;
     }
 
     let l = labels(case.units);

@@ -54,3 +54,26 @@ pub fn human_summary(case: &Case, solution: &Solution, solve_seconds: f64) -> St
     );
     t
 }
+
+/// The stress lines printed after a solve or `thirdbody stress` (values in the
+/// case's stress unit; only the ones the request produced).
+pub fn stress_summary(s: &thirdbody::stress::StressSummary) -> String {
+    let mut t = String::from("  stresses     ");
+    let mut parts = Vec::new();
+    if let (Some(v), Some(x), Some(z)) = (s.tau1_max, s.tau1_max_x, s.tau1_max_z) {
+        parts.push(format!("tau1 max {v:.4e} at x = {x:.4e}, z = {z:.4e}"));
+    }
+    if let (Some(lo), Some(hi)) = (s.sigma_x_min, s.sigma_x_max) {
+        parts.push(format!("surface sigma_x {lo:.4e} .. {hi:.4e}"));
+    }
+    if let (Some(c), Some(b)) = (
+        s.interface_sigma_x_max_coating,
+        s.interface_sigma_x_max_substrate,
+    ) {
+        parts.push(format!(
+            "interface sigma_x max {c:.4e} (coating), {b:.4e} (substrate)"
+        ));
+    }
+    t.push_str(&parts.join("; "));
+    t
+}

@@ -3,8 +3,11 @@
 //! range, and no file in the output folder; a successful solve writes every output
 //! with the documented keys and shapes.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use std::path::Path;
+
+use common::{assert_no_output, read_summary, solve};
 
 use ndarray::Array2;
 
@@ -79,48 +82,6 @@ const SUMMARY_KEYS: [&str; 25] = [
     "window_y_max",
 ];
 
-struct Run {
-    output: Output,
-    out_dir: PathBuf,
-    _root: tempfile::TempDir,
-}
-
-impl Run {
-    fn code(&self) -> Option<i32> {
-        self.output.status.code()
-    }
-    fn stderr(&self) -> String {
-        String::from_utf8_lossy(&self.output.stderr).into_owned()
-    }
-    fn stdout(&self) -> String {
-        String::from_utf8_lossy(&self.output.stdout).into_owned()
-    }
-}
-
-/// Writes `case` (and `files`) into a fresh folder and runs `thirdbody solve`.
-fn solve(case: &str, files: &[(&str, &str)], extra_args: &[&str]) -> Run {
-    let root = tempfile::tempdir().unwrap();
-    let case_path = root.path().join("case.toml");
-    std::fs::write(&case_path, case).unwrap();
-    for (name, text) in files {
-        std::fs::write(root.path().join(name), text).unwrap();
-    }
-    let out_dir = root.path().join("out");
-    let output = Command::new(env!("CARGO_BIN_EXE_thirdbody"))
-        .arg("solve")
-        .arg(&case_path)
-        .arg("--out")
-        .arg(&out_dir)
-        .args(extra_args)
-        .output()
-        .unwrap();
-    Run {
-        output,
-        out_dir,
-        _root: root,
-    }
-}
-
 /// Exit code 2, exactly one stderr line `error: ...` containing every `parts`,
 /// and nothing in the output folder.
 fn assert_bad_input(case: &str, files: &[(&str, &str)], parts: &[&str]) {
@@ -134,13 +95,6 @@ fn assert_bad_input(case: &str, files: &[(&str, &str)], parts: &[&str]) {
         assert!(lines[0].contains(p), "{err:?} does not mention {p:?}");
     }
     assert_no_output(&run.out_dir);
-}
-
-fn assert_no_output(dir: &Path) {
-    if dir.exists() {
-        let left: Vec<_> = std::fs::read_dir(dir).unwrap().collect();
-        assert!(left.is_empty(), "files left in {}: {left:?}", dir.display());
-    }
 }
 
 /// `text` with the line starting `key =` replaced by `new`.
@@ -244,22 +198,18 @@ fn unreadable_files_are_bad_input() {
     assert_bad_input(&case, &[], &["slider.file", "absent.npy"]);
 
     let root = tempfile::tempdir().unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_thirdbody"))
-        .args(["solve", "no-such-case.toml", "--out"])
-        .arg(root.path().join("out"))
-        .output()
-        .unwrap();
+    let out = root.path().join("out");
+    let output = common::thirdbody(&[
+        "solve".as_ref(),
+        "no-such-case.toml".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
     assert_eq!(output.status.code(), Some(2));
     let err = String::from_utf8_lossy(&output.stderr);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("no-such-case.toml"), "{err}");
     assert!(!root.path().join("out").exists());
-}
-
-fn read_summary(dir: &Path) -> serde_json::Map<String, serde_json::Value> {
-    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
-    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
-    value.as_object().unwrap().clone()
 }
 
 fn read_npy(path: &Path) -> Array2<f64> {

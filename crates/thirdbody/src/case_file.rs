@@ -18,6 +18,7 @@ use crate::contact::SolverParams;
 use crate::error::{Error, Result};
 use crate::layer::{ComplianceLaw, Integration, Layer, Table};
 use crate::shape::{HeightMap, Slider};
+use crate::stress::{SectionKind, StressRequest};
 
 /// A parsed and validated case file.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,6 +27,8 @@ pub struct CaseFile {
     pub case: Case,
     /// Solver settings (`[solver]`, defaults otherwise).
     pub solver: SolverParams,
+    /// Stresses to compute after the solve (`[stress]`; `None` without that section).
+    pub stress: Option<StressRequest>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -39,6 +42,7 @@ struct RawCase {
     loading: Option<RawLoading>,
     grid: Option<RawGrid>,
     solver: Option<RawSolver>,
+    stress: Option<RawStress>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -137,6 +141,16 @@ struct RawSolver {
     max_windows: Option<usize>,
 }
 
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStress {
+    sections: Option<Vec<String>>,
+    y: Option<f64>,
+    max_depth: Option<f64>,
+    depth_points: Option<usize>,
+    planes: Option<Vec<f64>>,
+}
+
 /// Parses and validates a case file.
 ///
 /// `load_height_map(file, cell_size)` is called for `shape = "height_map"` with the
@@ -223,7 +237,15 @@ pub fn parse_case_file(
         units,
     };
     case.validate()?;
-    Ok(CaseFile { case, solver })
+    let stress = raw.stress.map(stress_request).transpose()?;
+    if let Some(request) = &stress {
+        request.validate(&case.body)?;
+    }
+    Ok(CaseFile {
+        case,
+        solver,
+        stress,
+    })
 }
 
 /// One line `line L: message` (plus the section the line is in) from a TOML error.
@@ -424,6 +446,34 @@ fn layer(l: RawLayer) -> Result<Layer> {
         relaxation_time,
         law,
         integration,
+    })
+}
+
+fn stress_request(raw: RawStress) -> Result<StressRequest> {
+    let defaults = StressRequest::default();
+    let sections = raw
+        .sections
+        .map(|names| {
+            names
+                .iter()
+                .map(|n| {
+                    SectionKind::from_name(n).ok_or_else(|| {
+                        Error::invalid(
+                            "stress.sections",
+                            format!("\"{n}\""),
+                            "\"xz\", \"surface\", \"interface\" or \"block\"",
+                        )
+                    })
+                })
+                .collect::<Result<Vec<_>>>()
+        })
+        .transpose()?;
+    Ok(StressRequest {
+        sections,
+        y: raw.y.unwrap_or(defaults.y),
+        max_depth: raw.max_depth,
+        depth_points: raw.depth_points.unwrap_or(defaults.depth_points),
+        planes: raw.planes.unwrap_or_default(),
     })
 }
 

@@ -419,3 +419,91 @@ fn fields_the_options_need_are_named_when_missing() {
         .replace("delta = 0.5\np0 = 0.001\n", "pressures = [0.0, 1.0]\n");
     error_naming(&bad_table, &["layer.compliances"]);
 }
+
+/// HERTZ with a coating.
+fn coated() -> String {
+    format!("{HERTZ}\n[coating]\nyoung = 3.0\npoisson = 0.3\nthickness = 0.01\n")
+}
+
+#[test]
+fn no_stress_section_means_no_stresses_and_an_empty_one_the_defaults() {
+    assert_eq!(parse(HERTZ).unwrap().stress, None);
+    let file = parse(&format!("{HERTZ}\n[stress]\n")).unwrap();
+    let request = file.stress.unwrap();
+    assert_eq!(request, StressRequest::default());
+    let body = file.case.body;
+    assert_eq!(
+        request.kinds(&body),
+        [SectionKind::Xz, SectionKind::Surface]
+    );
+    // A coated body adds both sides of the interface by default.
+    let file = parse(&format!("{}\n[stress]\n", coated())).unwrap();
+    assert_eq!(
+        file.stress.unwrap().kinds(&file.case.body),
+        [
+            SectionKind::Xz,
+            SectionKind::Surface,
+            SectionKind::Interface
+        ]
+    );
+}
+
+#[test]
+fn stress_section_keys_are_read() {
+    let text = format!(
+        "{}\n[stress]\nsections = [\"block\", \"interface\", \"xz\"]\ny = 0.01\n\
+         max_depth = 0.2\ndepth_points = 9\nplanes = [0.0, 0.05]\n",
+        coated()
+    );
+    let request = parse(&text).unwrap().stress.unwrap();
+    assert_eq!(
+        request,
+        StressRequest {
+            sections: Some(vec![
+                SectionKind::Block,
+                SectionKind::Interface,
+                SectionKind::Xz
+            ]),
+            y: 0.01,
+            max_depth: Some(0.2),
+            depth_points: 9,
+            planes: vec![0.0, 0.05],
+        }
+    );
+    // Evenly spaced from the surface to max_depth, both included.
+    let d = request.depths(1.0);
+    assert_eq!(d.len(), 9);
+    assert_eq!((d[0], d[8]), (0.0, 0.2));
+    assert!((d[1] - 0.025).abs() < 1e-15);
+}
+
+#[test]
+fn bad_stress_requests_name_the_key() {
+    let stress = |lines: &str| format!("{HERTZ}\n[stress]\n{lines}\n");
+    for (lines, parts) in [
+        (
+            "depth_points = 0",
+            &["stress.depth_points", "at least 2"][..],
+        ),
+        ("depth_points = 1", &["stress.depth_points", "at least 2"]),
+        ("max_depth = -0.1", &["stress.max_depth", "> 0"]),
+        ("max_depth = 0.0", &["stress.max_depth", "> 0"]),
+        ("max_depth = nan", &["stress.max_depth", "finite"]),
+        ("planes = [0.1, -0.2]", &["stress.planes[1]", ">= 0"]),
+        ("y = inf", &["stress.y", "finite"]),
+        (
+            "sections = [\"xy\"]",
+            &["stress.sections", "\"xy\"", "\"block\""],
+        ),
+        ("sections = []", &["stress.sections", "at least one"]),
+        ("sections = [\"xz\", \"xz\"]", &["stress.sections", "once"]),
+        (
+            "sections = [\"interface\"]",
+            &["stress.sections", "interface", "[coating]"],
+        ),
+        ("depth = 3", &["line", "stress.depth", "unknown field"]),
+        ("depth_points = -3", &["stress.depth_points"]),
+    ] {
+        error_naming(&stress(lines), parts);
+    }
+}

@@ -8,7 +8,7 @@
 // Index loops over the six stress components read best as they are.
 #![allow(clippy::needless_range_loop)]
 
-use thirdbody::stress::{stresses, Section};
+use thirdbody::stress::{stresses, Section, SectionKind, StressRequest};
 use thirdbody::{solve, Body, Case, Elastic, Grid, GridSpec, Loading, Slider, SolverParams, Units};
 
 const NU: f64 = 0.3;
@@ -216,11 +216,10 @@ fn hertz_pressure_sampled_on_the_grid() {
     check("analytic Hertz pressure", &hertz_errors(&grid, &p, a, p0));
 }
 
-#[test]
-fn hertz_pressure_from_the_solver() {
-    // Sphere R = 1 on E = 1, nu = 0.3 (rigid slider): Hertz a = (3 Q R / (4 E*))^(1/3),
-    // p0 = 2 E* a / (pi R) (Johnson eq. 4.22-4.23). Load chosen for a = 0.02; the
-    // window holds 129 cells with a = 32 cells (a cell centre on the axis).
+/// The solver's pressure for a rigid sphere (R = 1) on E = 1, nu = 0.3 loaded for a
+/// Hertz radius a = 0.02 (Johnson eq. 4.22-4.23), on 129 x 129 cells with a = 32
+/// cells (a cell centre on the axis). Returns the case, the solution, a and p0.
+fn solved_hertz() -> (Case, thirdbody::Solution, f64, f64) {
     let (radius, a) = (1.0f64, 0.02f64);
     let e_star = 1.0 / (1.0 - NU * NU);
     let load = 4.0 * e_star * a.powi(3) / (3.0 * radius);
@@ -243,8 +242,14 @@ fn hertz_pressure_from_the_solver() {
         units: Units::Dimensionless,
     };
     let solution = solve(&case, &SolverParams::default()).unwrap();
+    assert_eq!((solution.grid.nx, solution.grid.ny), (n, n));
+    (case, solution, a, p0)
+}
+
+#[test]
+fn hertz_pressure_from_the_solver() {
+    let (_, solution, a, p0) = solved_hertz();
     let grid = solution.grid;
-    assert_eq!((grid.nx, grid.ny), (n, n));
     let e = hertz_errors(&grid, &solution.pressure, a, p0);
     check("solver Hertz pressure", &e);
     // The convenience on Solution gives the same field.
@@ -254,4 +259,102 @@ fn hertz_pressure_from_the_solver() {
     };
     let direct = stresses(&grid, &solution.pressure, &BODY, &section).unwrap();
     assert_eq!(solution.stresses(&BODY, &section).unwrap(), direct);
+}
+
+#[test]
+fn stress_request_summary_on_the_solver_hertz_pressure() {
+    // The case file's [stress] request (XZ plane y = 0 and the surface) with depths
+    // every a/40 to 1.5 a: its summary against Johnson's closed forms.
+    let (case, solution, a, p0) = solved_hertz();
+    let request = StressRequest {
+        max_depth: Some(1.5 * a),
+        depth_points: 61,
+        ..StressRequest::default()
+    };
+    let results = request
+        .compute(&case.body, &solution.grid, &solution.pressure)
+        .unwrap();
+    let names: Vec<&str> = results
+        .sections
+        .iter()
+        .map(|(n, _)| n.name.as_str())
+        .collect();
+    assert_eq!(names, ["xz", "surface"]);
+    let s = results.summary;
+    let (tau_ref, z_ref) = johnson_tau1_max();
+    let (t, x, z) = (
+        s.tau1_max.unwrap(),
+        s.tau1_max_x.unwrap(),
+        s.tau1_max_z.unwrap(),
+    );
+    eprintln!(
+        "summary: tau1_max {:.5} p0 at x = {:.4} a, z = {:.4} a (Johnson {tau_ref:.5} at \
+         {z_ref:.4}); surface sigma_x {:.5} .. {:.5} p0",
+        t / p0,
+        x / a,
+        z / a,
+        s.sigma_x_min.unwrap() / p0,
+        s.sigma_x_max.unwrap() / p0
+    );
+    assert!((t / p0 - tau_ref).abs() < 0.01 * tau_ref);
+    // The depth grid has steps of a/40: the maximum is within half a step.
+    assert!((z / a - z_ref).abs() < 0.0125 + 0.01 * z_ref);
+    assert!(x.abs() <= solution.grid.cell);
+    // Surface: -(1 + 2 nu)/2 p0 at the centre. The most tensile sigma_x lies on the x
+    // axis at the edge, (1 - 2 nu)/3 p0, falling outside as a^2/r^2 (Johnson §3.4).
+    // The cell centred on r = a straddles the edge, so the grid's largest value lies
+    // between the exterior law at the first centre wholly outside (r = a + h) and
+    // the edge value.
+    let centre = -(1.0 + 2.0 * NU) / 2.0;
+    assert!((s.sigma_x_min.unwrap() / p0 - centre).abs() < 0.01 * centre.abs());
+    let edge = (1.0 - 2.0 * NU) / 3.0;
+    let outside = edge * (a / (a + solution.grid.cell)).powi(2);
+    let got = s.sigma_x_max.unwrap() / p0;
+    assert!(
+        got > 0.99 * outside && got < 1.01 * edge,
+        "{got} not in [{outside}, {edge}]"
+    );
+    assert_eq!(s.interface_sigma_x_max_coating, None);
+    assert_eq!(s.interface_sigma_x_max_substrate, None);
+}
+
+#[test]
+fn interface_summary_of_a_coating_of_the_substrate_material() {
+    // E1 = E2: both sides of the interface carry the homogeneous body's stresses, so
+    // their largest sigma_x equals that of the homogeneous plane z = h1.
+    let (_, solution, a, _) = solved_hertz();
+    let h1 = 0.4 * a;
+    let coated = Body::Coated {
+        coating: Elastic {
+            young: 1.0,
+            poisson: NU,
+        },
+        thickness: h1,
+        substrate: Elastic {
+            young: 1.0,
+            poisson: NU,
+        },
+    };
+    let request = StressRequest {
+        sections: Some(vec![SectionKind::Interface]),
+        ..StressRequest::default()
+    };
+    let s = request
+        .compute(&coated, &solution.grid, &solution.pressure)
+        .unwrap()
+        .summary;
+    let plane = solution.stresses(&BODY, &Section::Plane { z: h1 }).unwrap();
+    let expected = plane.components[0]
+        .iter()
+        .fold(f64::NEG_INFINITY, |m, &v| m.max(v));
+    for got in [
+        s.interface_sigma_x_max_coating.unwrap(),
+        s.interface_sigma_x_max_substrate.unwrap(),
+    ] {
+        assert!(
+            (got - expected).abs() < 1e-6 * expected.abs(),
+            "{got} vs {expected}"
+        );
+    }
+    assert_eq!(s.tau1_max, None);
 }

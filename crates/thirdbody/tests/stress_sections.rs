@@ -207,7 +207,10 @@ fn bad_requests_name_the_field() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("stress.sections") && e.contains("coated body"), "{e}");
+    assert!(
+        e.contains("stress.sections") && e.contains("coated body"),
+        "{e}"
+    );
     // A bad material.
     let bad = Body::Homogeneous(Elastic {
         young: 1.0,

@@ -27,6 +27,7 @@
 mod coated_kernels;
 pub mod derived;
 pub mod kernels;
+pub mod request;
 mod sections;
 
 pub use coated_kernels::CoatedStressKernels;
@@ -34,6 +35,7 @@ pub use kernels::{
     love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice,
     StressKernels, COMPONENTS,
 };
+pub use request::{NamedSection, SectionKind, StressRequest, StressResults, StressSummary};
 
 pub use crate::body::coated_stress::Side;
 use crate::case::Body;

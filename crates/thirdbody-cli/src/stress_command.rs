@@ -1,0 +1,200 @@
+//! `thirdbody stress DIR`: subsurface stresses for a case already solved into DIR by
+//! `thirdbody solve`, from the files that solve left there: the case (`case.toml`),
+//! the window (`summary.json`) and the pressure (`pressure.npy`, or `pressure.csv`).
+//! The request is the case's `[stress]` section, or that of `--request FILE`, or the
+//! defaults. The stress files are staged and renamed into DIR, and `summary.json`
+//! is replaced (atomically) by one with the new `stress` object.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use ndarray::Array2;
+use serde_json::Value;
+use thirdbody::case_file::parse_case_file;
+use thirdbody::{Grid, HeightMap};
+
+use crate::outputs::{self, Formats};
+use crate::staging::Staging;
+use crate::{report, stress_outputs, BadInput};
+
+/// Arguments of `thirdbody stress`.
+#[derive(Args)]
+pub struct StressArgs {
+    /// A folder written by `thirdbody solve`.
+    dir: PathBuf,
+    /// A TOML file with a `[stress]` section to use instead of the case's.
+    #[arg(long, value_name = "FILE")]
+    request: Option<PathBuf>,
+    /// Data formats to write: a comma-separated list of npy, csv, vtk (default all).
+    #[arg(long, value_name = "LIST", value_parser = outputs::parse_formats)]
+    format: Option<Formats>,
+    /// Print nothing but errors.
+    #[arg(long)]
+    quiet: bool,
+}
+
+fn bad(message: String) -> anyhow::Error {
+    BadInput(message).into()
+}
+
+fn read_text(path: &Path, what: &str) -> Result<String> {
+    std::fs::read_to_string(path).map_err(|e| {
+        bad(format!(
+            "cannot read {} ({what}): {e}; is this a folder written by thirdbody solve?",
+            path.display()
+        ))
+    })
+}
+
+/// The case text with its `[stress]` table replaced by the request file's (or an
+/// empty one, for the defaults, when neither has one).
+fn case_with_request(case_text: &str, request: Option<&Path>) -> Result<String> {
+    let mut case: toml::Table = case_text.parse().map_err(|e| {
+        bad(format!(
+            "case.toml of the solved folder does not parse: {e}"
+        ))
+    })?;
+    if let Some(path) = request {
+        let text = read_text(path, "the stress request")?;
+        let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            bad(format!(
+                "{}: {}",
+                path.display(),
+                e.message().replace('\n', " ")
+            ))
+        })?;
+        let stress = table.remove("stress").ok_or_else(|| {
+            bad(format!(
+                "{} has no [stress] section: give one (an empty one means the defaults)",
+                path.display()
+            ))
+        })?;
+        if let Some(other) = table.keys().next() {
+            return Err(bad(format!(
+                "{}: only a [stress] section is read from a request file, found {other}",
+                path.display()
+            )));
+        }
+        case.insert("stress".into(), stress);
+    } else if !case.contains_key("stress") {
+        case.insert("stress".into(), toml::Value::Table(toml::Table::new()));
+    }
+    Ok(toml::to_string(&case)?)
+}
+
+/// The window of the solve, from `summary.json`.
+fn grid_of(summary: &Value) -> Result<Grid> {
+    let number = |key: &str| {
+        summary[key]
+            .as_f64()
+            .ok_or_else(|| bad(format!("summary.json has no number {key}")))
+    };
+    let count = |key: &str| {
+        summary[key]
+            .as_u64()
+            .map(|n| n as usize)
+            .ok_or_else(|| bad(format!("summary.json has no count {key}")))
+    };
+    Ok(Grid {
+        nx: count("nx")?,
+        ny: count("ny")?,
+        cell: number("cell_size")?,
+        x0: number("window_x_min")?,
+        y0: number("window_y_min")?,
+    })
+}
+
+/// The pressure, row-major with rows along y, from `pressure.npy` or `pressure.csv`.
+fn read_pressure(dir: &Path, grid: &Grid) -> Result<Vec<f64>> {
+    let npy = dir.join("pressure.npy");
+    let csv = dir.join("pressure.csv");
+    let p = if npy.exists() {
+        let a: Array2<f64> = ndarray_npy::read_npy(&npy)
+            .map_err(|e| bad(format!("cannot read {}: {e}", npy.display())))?;
+        if a.dim() != (grid.ny, grid.nx) {
+            return Err(bad(format!(
+                "{} has shape {:?}; summary.json says ({}, {})",
+                npy.display(),
+                a.dim(),
+                grid.ny,
+                grid.nx
+            )));
+        }
+        a.iter().copied().collect()
+    } else if csv.exists() {
+        let text = read_text(&csv, "the pressure")?;
+        let p: Vec<f64> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.rsplit(',').next().and_then(|v| v.parse().ok()))
+            .collect::<Option<_>>()
+            .ok_or_else(|| {
+                bad(format!(
+                    "{} has a line that is not x,y,pressure",
+                    csv.display()
+                ))
+            })?;
+        if p.len() != grid.len() {
+            return Err(bad(format!(
+                "{} has {} cells; summary.json says {}",
+                csv.display(),
+                p.len(),
+                grid.len()
+            )));
+        }
+        p
+    } else {
+        return Err(bad(format!(
+            "{} has neither pressure.npy nor pressure.csv: solve with --format including npy \
+             or csv",
+            dir.display()
+        )));
+    };
+    Ok(p)
+}
+
+/// Runs `thirdbody stress`.
+pub fn run(args: &StressArgs) -> Result<()> {
+    let dir = &args.dir;
+    if !dir.is_dir() {
+        return Err(bad(format!("{} is not a folder", dir.display())));
+    }
+    let case_text = read_text(&dir.join("case.toml"), "the solved case")?;
+    let text = case_with_request(&case_text, args.request.as_deref())?;
+    // Stresses do not depend on the slider's shape: a height-map slider is read as
+    // a flat map, so its file need not be where the original case had it.
+    let file = parse_case_file(&text, &mut |_, cell_size| {
+        Ok(HeightMap {
+            nx: 2,
+            ny: 2,
+            cell_size,
+            heights: vec![0.0; 4],
+        })
+    })?;
+    let request = file
+        .stress
+        .context("the stress request vanished while parsing")?;
+    let summary_path = dir.join("summary.json");
+    let mut summary: Value = serde_json::from_str(&read_text(&summary_path, "the summary")?)
+        .map_err(|e| bad(format!("{}: {e}", summary_path.display())))?;
+    let grid = grid_of(&summary)?;
+    let pressure = read_pressure(dir, &grid)?;
+    let results = request.compute(&file.case.body, &grid, &pressure)?;
+
+    let mut out = Staging::new(dir)?;
+    stress_outputs::write_stress(
+        &mut out,
+        &results,
+        file.case.units,
+        args.format.unwrap_or_default(),
+    )?;
+    summary["stress"] = stress_outputs::summary_json(&results)?;
+    outputs::write_summary(&mut out, &summary)?;
+    out.commit()?;
+    if !args.quiet {
+        println!("{}", report::stress_summary(&results.summary));
+        println!("stresses in {}", dir.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,230 @@
+//! The stress files of a solve or of `thirdbody stress` (docs/outputs.md): per
+//! section `stress_<name>.npy` (float64, shape (11, nz, ny, nx): the six components
+//! `sigma_x, sigma_y, sigma_z, tau_xy, tau_xz, tau_yz`, the principal stresses
+//! `s1 >= s2 >= s3`, `tau1 = (s1 - s3)/2` and von Mises) and `stress_<name>.csv`
+//! (`x,y,z` and the same eleven columns); the block also as `stress_block.vti`
+//! (VTK image data); colour maps of tau1 and sigma_x in the XZ plane with contour
+//! lines (paper Figs. 10-11); sigma_x along x on the surface and on both sides of
+//! the interface (Figs. 9 and 12). The JSON `stress` object of `summary.json` holds
+//! the library's [`thirdbody::stress::StressSummary`] and what each section covers.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use ndarray::Array4;
+use serde_json::{json, Value};
+use thirdbody::stress::{StressField, StressResults};
+use thirdbody::Units;
+use thirdbody_cli::plot::{self, Series};
+use thirdbody_cli::vtk;
+
+use crate::outputs::Formats;
+use crate::staging::Staging;
+
+/// Names of the eleven stored fields, in storage order.
+pub const FIELD_NAMES: [&str; 11] = [
+    "sigma_x",
+    "sigma_y",
+    "sigma_z",
+    "tau_xy",
+    "tau_xz",
+    "tau_yz",
+    "s1",
+    "s2",
+    "s3",
+    "tau1",
+    "von_mises",
+];
+
+/// The eleven fields of a section, in [`FIELD_NAMES`] order.
+fn all_fields(f: &StressField) -> Vec<Vec<f64>> {
+    let mut out: Vec<Vec<f64>> = f.components.to_vec();
+    out.extend(f.principal());
+    out.push(f.tau1());
+    out.push(f.von_mises());
+    out
+}
+
+/// The `stress` object of `summary.json`.
+pub fn summary_json(results: &StressResults) -> Result<Value> {
+    let Value::Object(mut map) = serde_json::to_value(&results.summary)? else {
+        anyhow::bail!("the stress summary did not serialise to an object");
+    };
+    let sections: Vec<Value> = results
+        .sections
+        .iter()
+        .map(|(named, f)| {
+            let mut s = json!({
+                "name": named.name,
+                "points": [f.xs.len(), f.ys.len(), f.zs.len()],
+                "depths": f.zs,
+            });
+            if let [y] = f.ys[..] {
+                s["y"] = json!(y);
+            }
+            s
+        })
+        .collect();
+    map.insert("sections".into(), Value::Array(sections));
+    Ok(Value::Object(map))
+}
+
+/// Labels in the case's units.
+struct Labels {
+    x: &'static str,
+    z: &'static str,
+    unit: &'static str,
+}
+
+fn labels(units: Units) -> Labels {
+    match units {
+        Units::Dimensionless => Labels {
+            x: "x'",
+            z: "z' (depth)",
+            unit: "/ E2",
+        },
+        Units::Si => Labels {
+            x: "x (m)",
+            z: "z (m, depth)",
+            unit: "(Pa)",
+        },
+    }
+}
+
+/// Stages every stress file into `out`.
+pub fn write_stress(
+    out: &mut Staging,
+    results: &StressResults,
+    units: Units,
+    formats: Formats,
+) -> Result<()> {
+    let l = labels(units);
+    for (named, f) in &results.sections {
+        let name = &named.name;
+        let fields = all_fields(f);
+        if formats.npy {
+            out.write(&format!("stress_{name}.npy"), |p| write_npy(p, f, &fields))?;
+        }
+        if formats.csv {
+            out.write(&format!("stress_{name}.csv"), |p| write_csv(p, f, &fields))?;
+        }
+        if formats.vtk && name == "block" {
+            out.write("stress_block.vti", |p| {
+                let spacing = f.xs.get(1).map_or(1.0, |x1| x1 - f.xs[0]);
+                let lattice = vtk::Lattice::from_axes([&f.xs, &f.ys, &f.zs], spacing)?;
+                let named: Vec<(&str, &[f64])> = FIELD_NAMES
+                    .iter()
+                    .zip(&fields)
+                    .map(|(n, v)| (*n, v.as_slice()))
+                    .collect();
+                vtk::write_image_data(p, &lattice, &named)
+            })?;
+        }
+        if name == "xz" && f.xs.len() >= 2 && f.zs.len() >= 2 {
+            let y = f.ys[0];
+            for (field, what) in [(9, "tau1"), (0, "sigma_x")] {
+                out.write(&format!("stress_xz_{what}.png"), |p| {
+                    plot::section_map(
+                        p,
+                        &f.xs,
+                        &f.zs,
+                        &fields[field],
+                        &format!("{what} in the plane y = {}", short(y)),
+                        l.x,
+                        l.z,
+                        &format!("{what} {}", l.unit),
+                        10,
+                    )
+                })?;
+            }
+        }
+    }
+    // sigma_x along x through y = 0 (or the XZ section's y) on the surface and the
+    // interface (paper Figs. 9 and 12).
+    let y_line = results
+        .sections
+        .iter()
+        .find(|(n, _)| n.name == "xz")
+        .map_or(0.0, |(_, f)| f.ys[0]);
+    let mut row_y = y_line;
+    let series: Vec<Series> = results
+        .sections
+        .iter()
+        .filter_map(|(named, f)| {
+            let label = match named.name.as_str() {
+                "surface" => "surface",
+                "interface_coating" => "interface, coating side",
+                "interface_substrate" => "interface, substrate side",
+                _ => return None,
+            };
+            let j = nearest(&f.ys, y_line)?;
+            row_y = f.ys[j];
+            Some(Series {
+                label: label.to_string(),
+                x: f.xs.clone(),
+                y: (0..f.xs.len())
+                    .map(|i| f.components[0][f.index(i, j, 0)])
+                    .collect(),
+                dashed: named.name == "interface_substrate",
+            })
+        })
+        .collect();
+    if !series.is_empty() {
+        out.write("stress_sigma_x.png", |p| {
+            plot::line_plot(
+                p,
+                &series,
+                &format!("sigma_x along x on the cell row y = {}", short(row_y)),
+                l.x,
+                &format!("sigma_x {}", l.unit),
+                false,
+            )
+        })?;
+    }
+    Ok(())
+}
+
+/// Index of the value nearest `y`.
+fn nearest(ys: &[f64], y: f64) -> Option<usize> {
+    (0..ys.len()).min_by(|&a, &b| (ys[a] - y).abs().total_cmp(&(ys[b] - y).abs()))
+}
+
+/// A number with 3 significant digits for titles.
+fn short(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// The eleven fields as a float64 NPY array of shape (11, nz, ny, nx).
+fn write_npy(path: &Path, f: &StressField, fields: &[Vec<f64>]) -> Result<()> {
+    let shape = (fields.len(), f.zs.len(), f.ys.len(), f.xs.len());
+    let array = Array4::from_shape_vec(shape, fields.concat())
+        .context("stress field size does not match its axes")?;
+    ndarray_npy::write_npy(path, &array)?;
+    Ok(())
+}
+
+/// `x,y,z` and the eleven fields, one line per point (x fastest, then y, then z).
+fn write_csv(path: &Path, f: &StressField, fields: &[Vec<f64>]) -> Result<()> {
+    let mut w = BufWriter::new(File::create(path)?);
+    writeln!(w, "x,y,z,{}", FIELD_NAMES.join(","))?;
+    for (k, z) in f.zs.iter().enumerate() {
+        for (j, y) in f.ys.iter().enumerate() {
+            for (i, x) in f.xs.iter().enumerate() {
+                let n = f.index(i, j, k);
+                write!(w, "{x},{y},{z}")?;
+                for field in fields {
+                    write!(w, ",{}", field[n])?;
+                }
+                writeln!(w)?;
+            }
+        }
+    }
+    w.flush()?;
+    Ok(())
+}
