@@ -598,3 +598,53 @@ fn bundled_sweep_examples_are_valid_sweeps() {
     }
     assert!(count >= 1);
 }
+
+#[test]
+fn a_stress_section_in_the_base_case_adds_stress_columns() {
+    // The Fig. 10 study: tau1_max against delta, from one sweep. Each row's stress
+    // columns equal what `thirdbody solve` reports for that case alone.
+    let dir = tempfile::tempdir().unwrap();
+    let case = BASE.replace("normal_load = 25e-6", "normal_load = 5e-6") + "\n[stress]\n";
+    let path = write_case(dir.path(), &case);
+    let out = dir.path().join("sweep");
+    let sweep = Sweep::from_file(&path, &["layer.delta=0.01,1".to_string()]).unwrap();
+    let report = run(&sweep, &options(&out), &|_| {}).unwrap();
+    assert_eq!(report.computed, 2);
+    let rows = read_results(&out);
+    let tau: Vec<f64> = rows
+        .iter()
+        .map(|r| r["stress_tau1_max"].parse().unwrap())
+        .collect();
+    assert!(tau[1] > tau[0], "tau1_max grows with delta: {tau:?}");
+    for key in [
+        "stress_tau1_max_x",
+        "stress_tau1_max_z",
+        "stress_sigma_x_min",
+        "stress_sigma_x_max",
+    ] {
+        assert!(
+            rows.iter()
+                .all(|r| r[key].parse::<f64>().unwrap().is_finite()),
+            "{key}"
+        );
+    }
+    let single = dir.path().join("single.toml");
+    fs::write(&single, case.replace("delta = 0.5", "delta = 1")).unwrap();
+    let solved = dir.path().join("solved");
+    let o = thirdbody(&[
+        "solve",
+        single.to_str().unwrap(),
+        "--out",
+        solved.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(solved.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["stress"]["tau1_max"].as_f64().unwrap(), tau[1]);
+}

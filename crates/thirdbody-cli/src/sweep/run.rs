@@ -24,6 +24,7 @@ use super::plot::write_mu_plot;
 use super::results::{collect, write_results};
 use super::{Sweep, SweepError};
 use crate::summary::summary_json;
+use serde_json::Value;
 
 /// Which part of the cases a run does: case `index` belongs to shard `k` (1-based) of
 /// `n` when `index % n == k - 1`.
@@ -205,7 +206,20 @@ fn solve_case(sweep: &Sweep, index: usize) -> Record {
         params.parallelism = Parallelism::Sequential;
         let solve_start = Instant::now();
         let solution = thirdbody::solve(&file.case, &params)?;
-        summary_json(&file.case, &solution, solve_start.elapsed().as_secs_f64())
+        let mut summary = summary_json(&file.case, &solution, solve_start.elapsed().as_secs_f64())?;
+        // A [stress] section in the base case: its scalar results become columns
+        // `stress_<key>` (the sections themselves are not kept per case).
+        if let Some(request) = &file.stress {
+            let stress = request.compute(&file.case.body, &solution.grid, &solution.pressure)?;
+            if let (Value::Object(map), Value::Object(scalars)) =
+                (&mut summary, serde_json::to_value(&stress.summary)?)
+            {
+                for (key, value) in scalars {
+                    map.insert(format!("stress_{key}"), value);
+                }
+            }
+        }
+        Ok(summary)
     }));
     let (status, summary, error) = match outcome {
         Ok(Ok(summary)) => (Status::Ok, Some(summary), None),
