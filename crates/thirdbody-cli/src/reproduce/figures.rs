@@ -5,7 +5,7 @@
 
 use anyhow::Result;
 use rayon::prelude::*;
-use thirdbody::stress::{SectionKind, StressRequest};
+use thirdbody::stress::{SectionKind, StressField, StressRequest};
 use thirdbody::{
     Body, Case, ComplianceLaw, Elastic, GridSpec, Integration, Layer, Loading, Parallelism, Slider,
     Solution, SolverParams, Units,
@@ -179,6 +179,51 @@ struct Model<'a> {
     label: &'a str,
     dashed: bool,
     case_at: &'a (dyn Fn(f64) -> Case + Sync),
+}
+
+/// sigma_x along x on the row of a plane section (surface, interface) nearest y = 0.
+fn sigma_x_row(f: &StressField, label: String, dashed: bool) -> Series {
+    let j = (0..f.ys.len())
+        .min_by(|&a, &b| f.ys[a].abs().total_cmp(&f.ys[b].abs()))
+        .unwrap_or(0);
+    Series {
+        label,
+        x: f.xs.clone(),
+        y: (0..f.xs.len())
+            .map(|i| f.components[0][f.index(i, j, 0)])
+            .collect(),
+        dashed,
+    }
+}
+
+/// Stages the colour map (PNG + SVG) of `values` on the XZ section `f` and its data
+/// as `stem.csv` with columns `x', z', name`.
+fn xz_map(
+    files: &mut FigureFiles,
+    stem: &str,
+    f: &StressField,
+    values: &[f64],
+    name: &str,
+    title: &str,
+) -> Result<()> {
+    files.plot(stem, |p| {
+        plot::section_map(
+            p,
+            &f.xs,
+            &f.zs,
+            values,
+            title,
+            "x'",
+            "z' (depth)",
+            &format!("{name} / E2"),
+            10,
+        )
+    })?;
+    let rows: Vec<Vec<f64>> = (0..f.zs.len())
+        .flat_map(|k| (0..f.xs.len()).map(move |i| (i, k)))
+        .map(|(i, k)| vec![f.xs[i], f.zs[k], values[f.index(i, 0, k)]])
+        .collect();
+    files.table_csv(&format!("{stem}.csv"), &["x'", "z'", name], &rows)
 }
 
 /// A parameter study: `mu` of each model's case at each value; points whose solve
@@ -618,17 +663,7 @@ fn fig9(r: Resolution, files: &mut FigureFiles) -> Result<FigureReport> {
             .iter()
             .find(|(n, _)| n.name == "surface")
             .ok_or_else(|| anyhow::anyhow!("no surface section"))?;
-        let j = (0..f.ys.len())
-            .min_by(|&a, &b| f.ys[a].abs().total_cmp(&f.ys[b].abs()))
-            .unwrap_or(0);
-        series.push(Series {
-            label: format!("delta = {d}"),
-            x: f.xs.clone(),
-            y: (0..f.xs.len())
-                .map(|i| f.components[0][f.index(i, j, 0)])
-                .collect(),
-            dashed: false,
-        });
+        series.push(sigma_x_row(f, format!("delta = {d}"), false));
         let s = &stress.summary;
         rep.numbers.push(number(
             format!("most compressive sigma_x, delta = {d}"),
@@ -675,25 +710,14 @@ fn fig10(r: Resolution, files: &mut FigureFiles) -> Result<FigureReport> {
             .find(|(n, _)| n.name == "xz")
             .ok_or_else(|| anyhow::anyhow!("no XZ section"))?;
         let tau1 = f.tau1();
-        let stem = format!("fig10{panel}_tau1");
-        files.plot(&stem, |p| {
-            plot::section_map(
-                p,
-                &f.xs,
-                &f.zs,
-                &tau1,
-                &format!("tau1, delta = {d} (Fig. 10{panel})"),
-                "x'",
-                "z' (depth)",
-                "tau1 / E2",
-                10,
-            )
-        })?;
-        let rows: Vec<Vec<f64>> = (0..f.zs.len())
-            .flat_map(|k| (0..f.xs.len()).map(move |i| (i, k)))
-            .map(|(i, k)| vec![f.xs[i], f.zs[k], tau1[f.index(i, 0, k)]])
-            .collect();
-        files.table_csv(&format!("{stem}.csv"), &["x'", "z'", "tau1"], &rows)?;
+        xz_map(
+            files,
+            &format!("fig10{panel}_tau1"),
+            f,
+            &tau1,
+            "tau1",
+            &format!("tau1, delta = {d} (Fig. 10{panel})"),
+        )?;
         let s = &stress.summary;
         let t = s.tau1_max.unwrap_or(f64::NAN);
         rep.numbers.push(number(
@@ -761,25 +785,14 @@ fn fig11(r: Resolution, files: &mut FigureFiles) -> Result<FigureReport> {
         let (non, lin) = (&solutions[2 * k], &solutions[2 * k + 1]);
         let stress = request.compute(&cases[2 * k].body, &non.grid, &non.pressure)?;
         let (_, f) = &stress.sections[0];
-        let stem = format!("fig11{panel}_sigma_x");
-        files.plot(&stem, |p| {
-            plot::section_map(
-                p,
-                &f.xs,
-                &f.zs,
-                &f.components[0],
-                &format!("sigma_x, h1' = {h} (Fig. 11{panel})"),
-                "x'",
-                "z' (depth)",
-                "sigma_x / E2",
-                10,
-            )
-        })?;
-        let rows: Vec<Vec<f64>> = (0..f.zs.len())
-            .flat_map(|k| (0..f.xs.len()).map(move |i| (i, k)))
-            .map(|(i, k)| vec![f.xs[i], f.zs[k], f.components[0][f.index(i, 0, k)]])
-            .collect();
-        files.table_csv(&format!("{stem}.csv"), &["x'", "z'", "sigma_x"], &rows)?;
+        xz_map(
+            files,
+            &format!("fig11{panel}_sigma_x"),
+            f,
+            &f.components[0],
+            "sigma_x",
+            &format!("sigma_x, h1' = {h} (Fig. 11{panel})"),
+        )?;
         let (pn, pl) = (max_pressure(non), max_pressure(lin));
         rep.numbers.push(number(
             format!("max pressure p', h1' = {h}, nonlinear"),
@@ -830,17 +843,11 @@ fn fig12(r: Resolution, files: &mut FigureFiles) -> Result<FigureReport> {
         {
             let stress = request.compute(&cases[0].body, &s.grid, &s.pressure)?;
             for (named, f) in &stress.sections {
-                let j = (0..f.ys.len())
-                    .min_by(|&a, &b| f.ys[a].abs().total_cmp(&f.ys[b].abs()))
-                    .unwrap_or(0);
-                series.push(Series {
-                    label: format!("{}, {model}", named.name.replace('_', " ")),
-                    x: f.xs.clone(),
-                    y: (0..f.xs.len())
-                        .map(|i| f.components[0][f.index(i, j, 0)])
-                        .collect(),
+                series.push(sigma_x_row(
+                    f,
+                    format!("{}, {model}", named.name.replace('_', " ")),
                     dashed,
-                });
+                ));
             }
             let sum = &stress.summary;
             rep.numbers.push(number(
