@@ -127,12 +127,17 @@ impl ChebyshevPanels {
         }
     }
 
-    /// The interpolant at `x` (panels extrapolate slightly beyond `[lo, hi]`).
-    pub fn eval(&self, x: f64) -> f64 {
+    /// The panel of `x` and the position `u` in [-1, 1] within it.
+    fn locate(&self, x: f64) -> (usize, f64) {
         let panels = self.coefficients.len() / self.degree;
         let p = (((x - self.lo) / self.width).floor().max(0.0) as usize).min(panels - 1);
         let mid = self.lo + (p as f64 + 0.5) * self.width;
-        let u = 2.0 * (x - mid) / self.width;
+        (p, 2.0 * (x - mid) / self.width)
+    }
+
+    /// The interpolant at `x` (panels extrapolate slightly beyond `[lo, hi]`).
+    pub fn eval(&self, x: f64) -> f64 {
+        let (p, u) = self.locate(x);
         let c = &self.coefficients[p * self.degree..(p + 1) * self.degree];
         // Clenshaw.
         let (mut b1, mut b2) = (0.0, 0.0);
@@ -142,6 +147,61 @@ impl ChebyshevPanels {
             b1 = b0;
         }
         u * b1 - b2 + c[0]
+    }
+}
+
+/// `N` functions on the same panels (same `lo`, `hi`, panel count and degree),
+/// evaluated together: one panel lookup and `N` Clenshaw recurrences run side by
+/// side, so that their dependency chains overlap. Each value is computed with exactly
+/// the operations of [`ChebyshevPanels::eval`], so the results are bitwise equal.
+#[derive(Debug, Clone)]
+pub struct InterleavedPanels<const N: usize> {
+    /// The panels' layout (the first function's).
+    layout: ChebyshevPanels,
+    /// Coefficient `j` of panel `p` for the `N` functions at `p * degree + j`.
+    coefficients: Vec<[f64; N]>,
+}
+
+impl<const N: usize> InterleavedPanels<N> {
+    /// Interleaves `N` interpolants built on the same panels.
+    ///
+    /// # Panics
+    /// If the interpolants do not share their panels (a programming error).
+    pub fn new(functions: [ChebyshevPanels; N]) -> Self {
+        let first = &functions[0];
+        for f in &functions {
+            assert!(
+                f.lo == first.lo
+                    && f.width == first.width
+                    && f.degree == first.degree
+                    && f.coefficients.len() == first.coefficients.len(),
+                "interleaved Chebyshev panels must share their layout"
+            );
+        }
+        let coefficients = (0..first.coefficients.len())
+            .map(|k| std::array::from_fn(|q| functions[q].coefficients[k]))
+            .collect();
+        InterleavedPanels {
+            layout: first.clone(),
+            coefficients,
+        }
+    }
+
+    /// The `N` interpolants at `x`.
+    #[inline]
+    pub fn eval(&self, x: f64) -> [f64; N] {
+        let (p, u) = self.layout.locate(x);
+        let degree = self.layout.degree;
+        let c = &self.coefficients[p * degree..(p + 1) * degree];
+        let (mut b1, mut b2) = ([0.0; N], [0.0; N]);
+        for cj in c.iter().skip(1).rev() {
+            for q in 0..N {
+                let b0 = 2.0 * u * b1[q] - b2[q] + cj[q];
+                b2[q] = b1[q];
+                b1[q] = b0;
+            }
+        }
+        std::array::from_fn(|q| u * b1[q] - b2[q] + c[0][q])
     }
 }
 
@@ -174,6 +234,34 @@ mod tests {
             let x = lo + (hi - lo) * k as f64 / 1000.0;
             let exact = (x.sin() + 0.3 * x).exp();
             assert!((c.eval(x) - exact).abs() < 1e-13 * exact, "{x}");
+        }
+    }
+
+    #[test]
+    fn interleaved_panels_equal_the_single_ones_bitwise() {
+        let f = |x: f64, q: usize| (x * (q as f64 + 0.5)).sin() * (-0.1 * x).exp() + q as f64;
+        let points = ChebyshevPanels::points(0.0, 7.0, 5, 12);
+        let singles: [ChebyshevPanels; 3] = std::array::from_fn(|q| {
+            let v: Vec<f64> = points.iter().map(|&x| f(x, q)).collect();
+            ChebyshevPanels::from_values(0.0, 7.0, 5, 12, &v)
+        });
+        let together = InterleavedPanels::new(singles.clone());
+        for k in 0..=400 {
+            let x = -0.1 + 7.2 * k as f64 / 400.0;
+            let got = together.eval(x);
+            for q in 0..3 {
+                assert_eq!(
+                    got[q].to_bits(),
+                    singles[q].eval(x).to_bits(),
+                    "x = {x}, q = {q}"
+                );
+                if (0.0..=7.0).contains(&x) {
+                    assert!(
+                        (got[q] - f(x, q)).abs() < 1e-9,
+                        "interpolation error at {x}"
+                    );
+                }
+            }
         }
     }
 }

@@ -49,7 +49,7 @@ use super::kernels::{
     HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
 };
 use crate::body::coated_stress::{plane_stress_transfer, Side};
-use crate::body::quadrature::ChebyshevPanels;
+use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
 use crate::case::Elastic;
 
 /// Relative size of the last alias term kept: `e^{-k lambda}` below `e^{-ALIAS_DECAY}`.
@@ -343,7 +343,9 @@ fn remainder_on_lattice(
                         continue;
                     }
                     for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
-                        let theta = tx_.hypot(ty_);
+                        // |k| h; the wave numbers are bounded (a few times 2 pi),
+                        // so hypot's overflow guard is not needed.
+                        let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
                         if theta > theta_cut {
                             continue;
                         }
@@ -409,9 +411,10 @@ fn remainder_on_lattice(
     std::array::from_fn(|_| it.next().unwrap_or_default())
 }
 
-/// The four wave-frame functions of `theta = k h` on Chebyshev panels.
+/// The four wave-frame functions of `theta = k h` on Chebyshev panels, evaluated
+/// together (the lattice sum spends most of its time here).
 struct RadialTable {
-    panels: [ChebyshevPanels; 4],
+    panels: InterleavedPanels<4>,
 }
 
 impl RadialTable {
@@ -423,14 +426,14 @@ impl RadialTable {
         let hi = panels as f64 * width;
         let points = ChebyshevPanels::points(0.0, hi, panels, PANEL_DEGREE);
         let values: Vec<[f64; 4]> = points.par_iter().map(|&t| radial(t / h)).collect();
-        let panels = std::array::from_fn(|q| {
+        let panels = InterleavedPanels::new(std::array::from_fn(|q| {
             let v: Vec<f64> = values.iter().map(|r| r[q]).collect();
             ChebyshevPanels::from_values(0.0, hi, panels, PANEL_DEGREE, &v)
-        });
+        }));
         RadialTable { panels }
     }
 
     fn eval(&self, theta: f64) -> [f64; 4] {
-        std::array::from_fn(|q| self.panels[q].eval(theta))
+        self.panels.eval(theta)
     }
 }
