@@ -3,6 +3,8 @@
 //! two), one line per combination of the other axes' values (e.g. one per p0 and one
 //! for the linear variant). The x axis is logarithmic when the values came from
 //! log-spaced ranges or span two decades or more (all > 0). Failed cases are left out.
+//! Axes and legends name the paper's symbols (V', C', p0', h1', ... for dimensionless
+//! cases; V (m/s), C0 (m/Pa), ... for SI cases) with the case key beside them.
 
 use std::path::{Path, PathBuf};
 
@@ -11,6 +13,34 @@ use serde_json::Value;
 
 use super::folder::{temp_path, Record, Status, SweepFile};
 use crate::plot::{line_plot, Series};
+
+/// The paper's symbol of a case key, with its unit for SI cases (section 4's primed
+/// variables for dimensionless ones); `None` for keys without one.
+fn symbol(key: &str, si: bool) -> Option<&'static str> {
+    let (dimensionless, with_unit) = match key {
+        "loading.velocity" => ("V'", "V (m/s)"),
+        "loading.normal_load" => ("Q'", "Q (N)"),
+        "layer.compliance" => ("C'", "C0 (m/Pa)"),
+        "layer.p0" => ("p0'", "p0 (Pa)"),
+        "layer.delta" => ("delta", "delta"),
+        "layer.relaxation_time" => ("T'", "T (s)"),
+        "coating.thickness" => ("h1'", "h1 (m)"),
+        "coating.young" => ("E1'", "E1 (Pa)"),
+        "coating.poisson" => ("nu1", "nu1"),
+        "substrate.young" => ("E2'", "E2 (Pa)"),
+        "substrate.poisson" => ("nu2", "nu2"),
+        _ => return None,
+    };
+    Some(if si { with_unit } else { dimensionless })
+}
+
+/// `symbol (key)`, or the key alone.
+fn axis_label(key: &str, si: bool) -> String {
+    match symbol(key, si) {
+        Some(s) => format!("{s} ({key})"),
+        None => key.to_string(),
+    }
+}
 
 /// Draws the plot into `dir`; `None` when there is no numeric axis or no solved case.
 pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result<Option<PathBuf>> {
@@ -22,6 +52,9 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
         return Ok(None);
     };
     let axis = &file.axes[x_axis];
+    let si = records.iter().any(|r| {
+        matches!(&r.summary, Some(Value::Object(m)) if m.get("units").and_then(Value::as_str) == Some("si"))
+    });
     let mut series: Vec<(Vec<usize>, Series)> = Vec::new();
     for r in records {
         let Some(entry) = file.cases.get(r.index).filter(|e| e.case == r.case) else {
@@ -56,7 +89,8 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
                         if ax.name == super::spec::VARIANT_AXIS {
                             value.clone()
                         } else {
-                            format!("{} = {value}", ax.name)
+                            let name = symbol(&ax.name, si).unwrap_or(&ax.name);
+                            format!("{name} = {value}")
                         }
                     })
                     .collect::<Vec<_>>()
@@ -97,8 +131,11 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
     let drawn = line_plot(
         &temp,
         &series,
-        &format!("Friction coefficient against {}", axis.name),
-        &axis.name,
+        &format!(
+            "Friction coefficient against {}",
+            symbol(&axis.name, si).unwrap_or(&axis.name)
+        ),
+        &axis_label(&axis.name, si),
         "mu",
         log_x,
     )
@@ -107,4 +144,27 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
         let _ = std::fs::remove_file(&temp);
     }
     drawn.map(|()| Some(path))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_are_labelled_with_the_papers_symbols() {
+        assert_eq!(
+            axis_label("loading.velocity", false),
+            "V' (loading.velocity)"
+        );
+        assert_eq!(
+            axis_label("loading.velocity", true),
+            "V (m/s) (loading.velocity)"
+        );
+        assert_eq!(
+            axis_label("coating.thickness", false),
+            "h1' (coating.thickness)"
+        );
+        assert_eq!(axis_label("grid.cells", false), "grid.cells");
+        assert_eq!(symbol("layer.p0", false), Some("p0'"));
+    }
 }
