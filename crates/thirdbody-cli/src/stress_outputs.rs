@@ -186,8 +186,8 @@ pub fn write_stress(
     Ok(())
 }
 
-/// Index of the value nearest `y`.
-fn nearest(ys: &[f64], y: f64) -> Option<usize> {
+/// Index of the value nearest `y` (the first of two equally near).
+pub fn nearest(ys: &[f64], y: f64) -> Option<usize> {
     (0..ys.len()).min_by(|&a, &b| (ys[a] - y).abs().total_cmp(&(ys[b] - y).abs()))
 }
 

@@ -14,6 +14,7 @@ use thirdbody_cli::plot::{self, Series};
 
 use super::{FigureFiles, FigureReport, KeyNumber, Resolution};
 use crate::outputs::row_nearest_y0;
+use crate::stress_outputs::nearest;
 
 /// A figure of the paper.
 pub type Figure = fn(Resolution, &mut FigureFiles) -> Result<FigureReport>;
@@ -183,9 +184,7 @@ struct Model<'a> {
 
 /// sigma_x along x on the row of a plane section (surface, interface) nearest y = 0.
 fn sigma_x_row(f: &StressField, label: String, dashed: bool) -> Series {
-    let j = (0..f.ys.len())
-        .min_by(|&a, &b| f.ys[a].abs().total_cmp(&f.ys[b].abs()))
-        .unwrap_or(0);
+    let j = nearest(&f.ys, 0.0).unwrap_or(0);
     Series {
         label,
         x: f.xs.clone(),
