@@ -111,13 +111,7 @@ fn exit_code(e: &anyhow::Error) -> u8 {
             return 2;
         }
         if let Some(t) = cause.downcast_ref::<thirdbody::Error>() {
-            return match t {
-                thirdbody::Error::InvalidValue { .. }
-                | thirdbody::Error::MissingField { .. }
-                | thirdbody::Error::UnusedField { .. }
-                | thirdbody::Error::Parse(_) => 2,
-                _ => 1,
-            };
+            return if t.is_input() { 2 } else { 1 };
         }
     }
     1
@@ -172,15 +166,17 @@ fn solve(args: &SolveArgs) -> Result<()> {
 
     let mut spinner = progress::Spinner::new(!args.quiet && std::io::stderr().is_terminal());
     let start = Instant::now();
-    let result = thirdbody::solve_observed(&case, &solver, &mut |p| spinner.observe(p));
+    let mut kernels = thirdbody::KernelCache::new();
+    let result = thirdbody::solve_with(&case, &solver, &mut kernels, &mut |p| spinner.observe(p));
     let solve_seconds = start.elapsed().as_secs_f64();
     spinner.finish();
     let solution = result?;
 
     let stress = stress
-        .map(|request| request.compute(&case.body, &solution.grid, &solution.pressure))
+        .map(|request| solution.stress_results(&request))
         .transpose()?;
-    let summary = outputs::summary_json(&case, &solution, solve_seconds, stress.as_ref())?;
+    let summary =
+        thirdbody_cli::summary::summary_json(&case, &solution, solve_seconds, stress.as_ref())?;
     outputs::write_all(
         &args.out,
         &outputs::SolveOutputs {

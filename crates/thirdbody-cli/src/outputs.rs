@@ -67,23 +67,6 @@ pub fn parse_formats(text: &str) -> std::result::Result<Formats, String> {
     Ok(f)
 }
 
-/// The summary of a solve as written to `summary.json`: the library part's summary
-/// ([`thirdbody_cli::summary::summary_json`]: the library's [`thirdbody::Summary`] plus
-/// the solver report, the wall time of kernel set-up and solve, the units and the
-/// window), plus, if asked for, the `stress` object.
-pub fn summary_json(
-    case: &Case,
-    solution: &Solution,
-    solve_seconds: f64,
-    stress: Option<&StressResults>,
-) -> Result<Value> {
-    let mut summary = thirdbody_cli::summary::summary_json(case, solution, solve_seconds)?;
-    if let (Some(results), Value::Object(map)) = (stress, &mut summary) {
-        map.insert("stress".into(), stress_outputs::summary_json(results)?);
-    }
-    Ok(summary)
-}
-
 /// Axis and colour-bar labels in the case's units.
 struct Labels {
     x: &'static str,

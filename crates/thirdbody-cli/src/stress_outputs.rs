@@ -14,7 +14,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use ndarray::Array4;
-use serde_json::{json, Value};
+use serde_json::Value;
+use thirdbody::report::StressReport;
 use thirdbody::stress::{StressField, StressResults};
 use thirdbody::Units;
 use thirdbody_cli::plot::{self, Series};
@@ -47,28 +48,9 @@ fn all_fields(f: &StressField) -> Vec<Vec<f64>> {
     out
 }
 
-/// The `stress` object of `summary.json`.
+/// The `stress` object of `summary.json` (see [`thirdbody::report::StressReport`]).
 pub fn summary_json(results: &StressResults) -> Result<Value> {
-    let Value::Object(mut map) = serde_json::to_value(&results.summary)? else {
-        anyhow::bail!("the stress summary did not serialise to an object");
-    };
-    let sections: Vec<Value> = results
-        .sections
-        .iter()
-        .map(|(named, f)| {
-            let mut s = json!({
-                "name": named.name,
-                "points": [f.xs.len(), f.ys.len(), f.zs.len()],
-                "depths": f.zs,
-            });
-            if let [y] = f.ys[..] {
-                s["y"] = json!(y);
-            }
-            s
-        })
-        .collect();
-    map.insert("sections".into(), Value::Array(sections));
-    Ok(Value::Object(map))
+    Ok(serde_json::to_value(StressReport::of(results))?)
 }
 
 /// Labels in the case's units.

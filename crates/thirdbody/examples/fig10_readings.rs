@@ -221,7 +221,7 @@ fn global_maxima(params: &SolverParams) -> Result<()> {
         let c = case(delta, Integration::Exact, 128);
         let sol = solve(&c, params)?;
         let depths: Vec<f64> = (0..=60).map(|k| k as f64 * 0.00025).collect();
-        let field = sol.stresses(&c.body, &Section::Block { depths })?;
+        let field = sol.stresses(&Section::Block { depths })?;
         let t = field.tau1();
         let (n, v) =
             t.iter().enumerate().fold(

@@ -71,6 +71,19 @@ pub enum Error {
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
+    /// Whether the error is in the user's input (a case, a request, a height map),
+    /// as opposed to a solve that failed: front ends classify errors by it (the CLI
+    /// exits with 2 for input errors, 1 otherwise).
+    pub fn is_input(&self) -> bool {
+        matches!(
+            self,
+            Error::InvalidValue { .. }
+                | Error::MissingField { .. }
+                | Error::UnusedField { .. }
+                | Error::Parse(_)
+        )
+    }
+
     /// Shorthand for [`Error::InvalidValue`].
     pub fn invalid(field: &str, value: impl std::fmt::Display, allowed: &str) -> Self {
         Error::InvalidValue {

@@ -49,14 +49,24 @@ impl Gmres {
         }
     }
 
-    /// Vector length.
-    pub fn len(&self) -> usize {
-        self.n
-    }
-
-    /// Whether the vectors are empty.
-    pub fn is_empty(&self) -> bool {
-        self.n == 0
+    /// Makes the storage fit vectors of length `n` and restart length `restart`,
+    /// keeping the allocations (a Newton step's system changes size with the contact
+    /// set; its GMRES workspace is reused). Nothing stored carries over into a solve.
+    pub fn reshape(&mut self, n: usize, restart: usize) {
+        self.n = n;
+        self.restart = restart;
+        self.basis.resize_with(restart + 1, Vec::new);
+        self.basis.iter_mut().for_each(|v| v.resize(n, 0.0));
+        self.hessenberg.resize_with(restart, Vec::new);
+        self.hessenberg
+            .iter_mut()
+            .for_each(|h| h.resize(restart + 1, 0.0));
+        self.cosines.resize(restart, 0.0);
+        self.sines.resize(restart, 0.0);
+        self.rhs.resize(restart + 1, 0.0);
+        self.coefficients.resize(restart, 0.0);
+        self.work.resize(n, 0.0);
+        self.preconditioned.resize(n, 0.0);
     }
 
     /// Solves `A x = b` starting from the given `x`, with `apply(v, out)`: `out = A v`

@@ -1,24 +1,31 @@
-//! The paper's own method, kept as a test oracle and a benchmark baseline: the dense
-//! system (6) — influence matrix `A = A^(1) + A^(3)` (eq. 7) assembled entry by entry
-//! from the closed-form kernel (eq. 9) and the layer's row relation (eq. 8, read
-//! with the loaded cell's compliance; design.md §1), plus the approach column and
+//! The paper's own method, kept as a test oracle and a benchmark baseline (behind
+//! the cargo feature `reference`): the dense system (6) — influence matrix
+//! `A = A^(1) + A^(3)` (eq. 7), the body's part assembled entry by entry from the
+//! body's kernel formula ([`crate::body::ElasticBody`]; eq. 9 or 10) and the layer's
+//! part column by column from the layer's Jacobian (any rheology; for the paper's
+//! layer eq. 8 read with the loaded cell's compliance), plus the approach column and
 //! the load row — solved by dense LU inside an active-set loop: cells with negative
 //! pressure leave the contact, cells where the surfaces overlap join it, until the
 //! set no longer changes. Nonlinear compliance laws are handled by Newton iterations
 //! on the dense system at each fixed set. O(n^3): for small grids only.
 //!
-//! It shares with the production solver only the case, the kernel formula and the
-//! compliance law; the operator application (direct sums instead of DC-FFT), the
-//! linear solver (LU instead of GMRES/CG) and the contact-set rule are its own.
+//! It shares with the production solver the assembled problem (the kernel formula,
+//! the slider's sampling and the layer's response, each tested on its own against
+//! closed forms and explicit sums); the operator application (direct sums instead
+//! of DC-FFT), the linear solver (LU instead of GMRES/CG), the contact-set rule and
+//! the treatment of the layer (a dense Jacobian instead of row sweeps and a
+//! triangular preconditioner) are its own.
 
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat};
 
-use crate::body::homogeneous::homogeneous_surface_kernel;
-use crate::case::{Body, Case};
+use crate::case::Case;
+use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
-use crate::layer::Layer;
+use crate::kernel_cache::KernelCache;
+use crate::layer::LayerResponse;
+use crate::problem::ContactProblem;
 use crate::solution::{Method, Solution, SolveInfo};
 
 /// Largest grid the dense reference accepts (cells).
@@ -35,35 +42,35 @@ pub fn solve_dense(case: &Case, grid: &Grid, tolerance: f64) -> Result<Solution>
             "at most 80 x 80 cells for the dense reference solver",
         ));
     }
-    let Body::Homogeneous(material) = case.body else {
-        return Err(Error::invalid(
-            "coating",
-            "a coated body",
-            "a homogeneous body for the dense reference solver",
-        ));
-    };
-    let kernel = homogeneous_surface_kernel(material, grid.cell);
-    let (nx, h) = (grid.nx, grid.cell);
+    let problem = case.assemble(
+        grid,
+        &mut KernelCache::with_capacity(0),
+        Parallelism::Sequential,
+    )?;
+    solve_dense_problem(&problem, tolerance)
+}
+
+/// Solves an assembled problem on its window with the dense method.
+pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<Solution> {
+    let grid = &problem.grid;
+    let n = grid.len();
+    let (nx, ny) = (grid.nx, grid.ny);
+    let quadrant = problem
+        .body
+        .model()
+        .surface_kernel_quadrant(grid.cell, nx, ny)?;
     let body = Mat::<f64>::from_fn(n, n, |a, b| {
-        let (ia, ja) = ((a % nx) as i64, (a / nx) as i64);
-        let (ib, jb) = ((b % nx) as i64, (b / nx) as i64);
-        kernel(ia - ib, ja - jb)
+        let di = (a % nx).abs_diff(b % nx);
+        let dj = (a / nx).abs_diff(b / nx);
+        quadrant[dj * nx + di]
     });
-    let mut f = vec![0.0; n];
-    let mut slope = vec![0.0; n];
-    case.slider.sample(grid, &mut f, &mut slope)?;
-    let creep_per_cell =
-        h / (case.velocity() * case.layer.as_ref().map_or(1.0, |l| l.relaxation_time));
-    let layer = case.layer.as_ref().map(|l| DenseLayer {
-        layer: l,
-        nx,
-        creep_per_cell: if creep_per_cell.is_finite() {
-            creep_per_cell
-        } else {
-            0.0
-        },
-    });
-    let load = case.loading.normal_load;
+    let f = problem.shape.clone();
+    let slope = problem.slope.clone();
+    let layer = problem
+        .layer
+        .as_deref()
+        .map(|response| DenseLayer { response });
+    let load = problem.load;
     let area = grid.cell_area();
 
     // Start: every cell where the undeformed slider is below the mean height.
@@ -110,11 +117,10 @@ pub fn solve_dense(case: &Case, grid: &Grid, tolerance: f64) -> Result<Solution>
         if !changed {
             let wb = apply_dense(&body, &p);
             let wl = layer.as_ref().map(|l| l.displacement(&p));
-            let compliance = layer
-                .as_ref()
-                .map(|l| p.iter().map(|&v| l.layer.law_at(v).compliance).collect());
+            let compliance = layer.as_ref().map(|l| l.response.compliance(&p));
             return Ok(Solution {
                 grid: *grid,
+                body: problem.body,
                 pressure: p,
                 body_displacement: wb,
                 layer_displacement: wl,
@@ -144,38 +150,35 @@ pub fn solve_dense(case: &Case, grid: &Grid, tolerance: f64) -> Result<Solution>
     })
 }
 
-/// The layer's eq. 8 written out entry by entry (no sweeps).
+/// The layer's part of the dense system: its displacement, and its Jacobian
+/// assembled column by column.
 struct DenseLayer<'a> {
-    layer: &'a Layer,
-    nx: usize,
-    creep_per_cell: f64,
+    response: &'a dyn LayerResponse,
 }
 
 impl DenseLayer<'_> {
-    /// `w3_i`: own instantaneous part plus creep from every cell upstream in the row.
+    /// `w3` of every cell.
     fn displacement(&self, p: &[f64]) -> Vec<f64> {
-        let nx = self.nx;
-        (0..p.len())
-            .map(|i| {
-                let row = i / nx;
-                let mut creep = 0.5 * self.layer.creep(p[i]).0;
-                for &pj in &p[i + 1..(row + 1) * nx] {
-                    creep += self.layer.creep(pj).0;
-                }
-                self.layer.instantaneous(p[i]).0 + self.creep_per_cell * creep
-            })
-            .collect()
+        let mut w = vec![0.0; p.len()];
+        self.response.displacement(p, &mut w);
+        w
     }
 
-    /// `d w3_i / d p_j`.
-    fn derivative(&self, p: &[f64], i: usize, j: usize) -> f64 {
-        if i / self.nx != j / self.nx || j < i {
-            0.0
-        } else if i == j {
-            self.layer.instantaneous(p[i]).1 + 0.5 * self.creep_per_cell * self.layer.creep(p[i]).1
-        } else {
-            self.creep_per_cell * self.layer.creep(p[j]).1
+    /// `d w3_i / d p_j` for `i, j` in `idx`, as a dense `m x m` block.
+    fn jacobian(&self, p: &[f64], idx: &[usize]) -> Mat<f64> {
+        let lin = self.response.linearise(p);
+        let n = p.len();
+        let (mut unit, mut column) = (vec![0.0; n], vec![0.0; n]);
+        let mut jac = Mat::<f64>::zeros(idx.len(), idx.len());
+        for (c, &j) in idx.iter().enumerate() {
+            unit[j] = 1.0;
+            lin.apply(&unit, &mut column);
+            unit[j] = 0.0;
+            for (r, &i) in idx.iter().enumerate() {
+                jac[(r, c)] = column[i];
+            }
         }
+        jac
     }
 }
 
@@ -229,10 +232,9 @@ fn newton_on_set(
             return Ok(());
         }
         previous = worst;
+        let layer_jac = layer.map(|l| l.jacobian(p, &idx));
         let jac = Mat::<f64>::from_fn(m + 1, m + 1, |r, c| match (r < m, c < m) {
-            (true, true) => {
-                body[(idx[r], idx[c])] + layer.map_or(0.0, |l| l.derivative(p, idx[r], idx[c]))
-            }
+            (true, true) => body[(idx[r], idx[c])] + layer_jac.as_ref().map_or(0.0, |j| j[(r, c)]),
             (true, false) => -1.0,
             (false, true) => area,
             (false, false) => 0.0,

@@ -7,6 +7,7 @@
 
 use serde::Serialize;
 
+use crate::case::Body;
 use crate::grid::Grid;
 
 /// Which algorithm produced a solution.
@@ -43,6 +44,8 @@ pub struct SolveInfo {
 pub struct Solution {
     /// The window and cells.
     pub grid: Grid,
+    /// The body it was solved on (its stresses are computed on it).
+    pub body: Body,
     /// Contact pressure per cell, >= 0.
     pub pressure: Vec<f64>,
     /// Normal displacement of the elastic body's surface.

@@ -422,23 +422,6 @@ fn elongated_grids_give_the_same_kernel_and_symmetry_holds() {
 }
 
 #[test]
-fn cached_kernel_is_computed_once_per_case() {
-    use std::sync::Arc;
-    use thirdbody::body::coated::coated_surface_kernel_cached;
-    let (c, s) = (elastic(2.0, 0.3), elastic(1.0, 0.3));
-    let first = coated_surface_kernel_cached(c, 0.37, s, 0.5, 16, 12).unwrap();
-    let again = coated_surface_kernel_cached(c, 0.37, s, 0.5, 16, 12).unwrap();
-    assert!(Arc::ptr_eq(&first, &again));
-    let other = coated_surface_kernel_cached(c, 0.38, s, 0.5, 16, 12).unwrap();
-    assert!(!Arc::ptr_eq(&first, &other));
-    assert_eq!(
-        *first,
-        coated_surface_kernel(c, 0.37, s, 0.5, 16, 12).unwrap()
-    );
-    assert!(coated_surface_kernel_cached(c, -1.0, s, 0.5, 16, 12).is_err());
-}
-
-#[test]
 fn extremely_thin_and_stiff_coating_is_refused_not_stalled() {
     // E1/E2 = 1e4 with h1 = 1e-4 cell on a 32 x 32 window: the radial integral
     // would be needed to R/h1 ~ 5e5; the error names the thickness and the limit.

@@ -37,7 +37,7 @@ fn tau1_max(delta: f64) -> (f64, f64, f64, f64) {
         3.0 * (s.contact_x_max - s.contact_x_min).max(0.5 * (s.contact_y_max - s.contact_y_min));
     let depths: Vec<f64> = (0..=90).map(|k| k as f64 * reach / 90.0).collect();
     let field = solution
-        .stresses(&case.body, &Section::XzPlane { y: 0.0, depths })
+        .stresses(&Section::XzPlane { y: 0.0, depths })
         .unwrap_or_else(|e| panic!("{e}"));
     let tau1 = field.tau1();
     let (n, t) =

@@ -13,17 +13,22 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use rayon::prelude::*;
-use thirdbody::Parallelism;
+use thirdbody::{KernelCache, Parallelism};
 
 use super::folder::{read_record, write_record, Folder, Record, Status, SweepFile};
 use super::plot::write_mu_plot;
 use super::results::{collect, write_results};
 use super::{Sweep, SweepError};
 use crate::summary::summary_json;
+
+/// Kernel spectra a sweep worker keeps (cases that share a window and body reuse
+/// them; a coated kernel costs up to seconds).
+const WORKER_CACHE_CAPACITY: usize = 4;
 use serde_json::Value;
 
 /// Which part of the cases a run does: case `index` belongs to shard `k` (1-based) of
@@ -149,8 +154,16 @@ pub fn run(
     let done = AtomicUsize::new(0);
     let failed = AtomicUsize::new(0);
     let solve_all = || {
+        // One kernel cache per worker thread, owned by this run.
+        let caches: Vec<Mutex<KernelCache>> = (0..rayon::current_num_threads())
+            .map(|_| Mutex::new(KernelCache::with_capacity(WORKER_CACHE_CAPACITY)))
+            .collect();
         to_solve.par_iter().with_max_len(1).try_for_each(|&index| {
-            let record = solve_case(sweep, index);
+            let worker = rayon::current_thread_index().unwrap_or(0) % caches.len();
+            let record = match caches[worker].lock() {
+                Ok(mut kernels) => solve_case(sweep, index, &mut kernels),
+                Err(_) => solve_case(sweep, index, &mut KernelCache::with_capacity(0)),
+            };
             write_record(dir, &record)?;
             if record.status == Status::Failed {
                 failed.fetch_add(1, Ordering::Relaxed);
@@ -198,19 +211,24 @@ pub(crate) fn finish(
 }
 
 /// Solves case `index`; every failure becomes a `failed` record.
-fn solve_case(sweep: &Sweep, index: usize) -> Record {
+fn solve_case(sweep: &Sweep, index: usize, kernels: &mut KernelCache) -> Record {
     let start = Instant::now();
     let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<serde_json::Value> {
         let file = sweep.parse_case(index)?;
         let mut params = file.solver;
         params.parallelism = Parallelism::Sequential;
         let solve_start = Instant::now();
-        let solution = thirdbody::solve(&file.case, &params)?;
-        let mut summary = summary_json(&file.case, &solution, solve_start.elapsed().as_secs_f64())?;
+        let solution = thirdbody::solve_with(&file.case, &params, kernels, &mut |_| {})?;
+        let mut summary = summary_json(
+            &file.case,
+            &solution,
+            solve_start.elapsed().as_secs_f64(),
+            None,
+        )?;
         // A [stress] section in the base case: its scalar results become columns
         // `stress_<key>` (the sections themselves are not kept per case).
         if let Some(request) = &file.stress {
-            let stress = request.compute(&file.case.body, &solution.grid, &solution.pressure)?;
+            let stress = solution.stress_results(request)?;
             if let (Value::Object(map), Value::Object(scalars)) =
                 (&mut summary, serde_json::to_value(&stress.summary)?)
             {

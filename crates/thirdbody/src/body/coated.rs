@@ -58,15 +58,52 @@
 //! E1/E2 = 0.1, 0.8 s for 10, 6 s for 100).
 
 use std::f64::consts::PI;
-use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
 
 use super::coated_radial::{RadialRemainder, MAX_DIRECT_S};
 use super::homogeneous::love_rectangle_displacement;
 use super::quadrature::GaussLegendre;
+use super::ElasticBody;
 use crate::case::Elastic;
 use crate::error::{require_positive, Error, Result};
+use crate::stress::{CoatedStressKernels, Side, StressKernels};
+
+/// A coating of thickness `thickness` perfectly bonded to a substrate half-space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoatedHalfSpace {
+    /// The coating (E1, nu1).
+    pub coating: Elastic,
+    /// Coating thickness h1 > 0.
+    pub thickness: f64,
+    /// The substrate (E2, nu2).
+    pub substrate: Elastic,
+}
+
+impl ElasticBody for CoatedHalfSpace {
+    fn surface_kernel_quadrant(&self, cell: f64, nx: usize, ny: usize) -> Result<Vec<f64>> {
+        coated_surface_kernel(self.coating, self.thickness, self.substrate, cell, nx, ny)
+    }
+
+    fn stress_kernels(&self, interface_side: Side) -> Box<dyn StressKernels> {
+        Box::new(CoatedStressKernels {
+            coating: self.coating,
+            thickness: self.thickness,
+            substrate: self.substrate,
+            interface_side,
+        })
+    }
+
+    fn interface_depths(&self) -> Vec<f64> {
+        vec![self.thickness]
+    }
+
+    fn softest_modulus(&self) -> f64 {
+        self.coating
+            .plane_strain_modulus()
+            .min(self.substrate.plane_strain_modulus())
+    }
+}
 
 /// The two-layer coefficients of `A(t)` for one pair of materials.
 #[derive(Debug, Clone, Copy)]
@@ -341,52 +378,6 @@ pub fn coated_surface_kernel(
             format!("E1 = {}, E2 = {}", coating.young, substrate.young),
             "moduli whose coated kernel is finite (the asymptotic series failed)",
         ));
-    }
-    Ok(kernel)
-}
-
-/// Key of a cached kernel: materials, thickness, cell and grid size, bitwise.
-type KernelKey = ([u64; 6], usize, usize);
-
-/// Kernels of the last few coated cases (a sweep over load or velocity reuses them).
-static KERNEL_CACHE: Mutex<Vec<(KernelKey, Arc<Vec<f64>>)>> = Mutex::new(Vec::new());
-const CACHE_CAPACITY: usize = 8;
-
-/// [`coated_surface_kernel`], computed once per distinct set of arguments and kept
-/// in a small process-wide cache.
-pub fn coated_surface_kernel_cached(
-    coating: Elastic,
-    thickness: f64,
-    substrate: Elastic,
-    cell: f64,
-    nx: usize,
-    ny: usize,
-) -> Result<Arc<Vec<f64>>> {
-    let key: KernelKey = (
-        [
-            coating.young.to_bits(),
-            coating.poisson.to_bits(),
-            thickness.to_bits(),
-            substrate.young.to_bits(),
-            substrate.poisson.to_bits(),
-            cell.to_bits(),
-        ],
-        nx,
-        ny,
-    );
-    if let Ok(cache) = KERNEL_CACHE.lock() {
-        if let Some((_, k)) = cache.iter().find(|(k, _)| *k == key) {
-            return Ok(Arc::clone(k));
-        }
-    }
-    let kernel = Arc::new(coated_surface_kernel(
-        coating, thickness, substrate, cell, nx, ny,
-    )?);
-    if let Ok(mut cache) = KERNEL_CACHE.lock() {
-        if cache.len() >= CACHE_CAPACITY {
-            cache.remove(0);
-        }
-        cache.push((key, Arc::clone(&kernel)));
     }
     Ok(kernel)
 }

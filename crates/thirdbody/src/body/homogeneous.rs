@@ -7,7 +7,42 @@
 //! `1 / sqrt(u^2 + v^2)`), which stays finite on cell edges and corners, unlike
 //! the textbook logarithms whose arguments vanish there.
 
+use super::ElasticBody;
 use crate::case::Elastic;
+use crate::error::Result;
+use crate::stress::{HomogeneousStressKernels, Side, StressKernels};
+
+/// A homogeneous elastic half-space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HomogeneousHalfSpace {
+    /// Its material.
+    pub material: Elastic,
+}
+
+impl ElasticBody for HomogeneousHalfSpace {
+    fn surface_kernel_quadrant(&self, cell: f64, nx: usize, ny: usize) -> Result<Vec<f64>> {
+        Ok(homogeneous_surface_kernel_quadrant(
+            self.material,
+            cell,
+            nx,
+            ny,
+        ))
+    }
+
+    fn stress_kernels(&self, _interface_side: Side) -> Box<dyn StressKernels> {
+        Box::new(HomogeneousStressKernels {
+            material: self.material,
+        })
+    }
+
+    fn interface_depths(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    fn softest_modulus(&self) -> f64 {
+        self.material.plane_strain_modulus()
+    }
+}
 
 /// `u asinh(v / |u|)`, continued by 0 at u = 0.
 fn half_primitive(u: f64, v: f64) -> f64 {

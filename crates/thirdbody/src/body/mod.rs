@@ -1,7 +1,11 @@
-//! Elastic bodies under the layer: the influence kernel that maps a pressure
-//! uniform over one surface cell to the normal surface displacement at every cell
-//! centre (paper eq. 9 for a homogeneous half-space, eq. 10 for a coated one), and
-//! its DC-FFT spectrum, built once per grid and material.
+//! Elastic bodies under the layer, seen through one small interface,
+//! [`ElasticBody`]: the influence kernel that maps a pressure uniform over one
+//! surface cell to the normal surface displacement at every cell centre (paper eq. 9
+//! for a homogeneous half-space, eq. 10 for a coated one), the stress kernels at a
+//! depth, the depths of material interfaces, and the modulus the automatic window
+//! needs. A case's [`Body`] is plain data; [`Body::model`] is the one place that
+//! picks the implementation. The solvers never see more than the kernel's DC-FFT
+//! spectrum (built through [`crate::KernelCache`]).
 
 pub mod coated;
 mod coated_radial;
@@ -11,32 +15,60 @@ pub(crate) mod quadrature;
 
 use std::sync::Arc;
 
+pub use coated::CoatedHalfSpace;
+pub use homogeneous::HomogeneousHalfSpace;
+
 use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum};
 use crate::error::Result;
 use crate::grid::Grid;
+use crate::stress::{Side, StressKernels};
 
-/// The surface-displacement kernel spectrum of `body` on `grid`'s cells.
+/// An elastic body as the solvers and the stress sections see it.
+pub trait ElasticBody: std::fmt::Debug + Send + Sync {
+    /// The surface influence kernel on square cells of side `cell`, on one quadrant
+    /// of offsets: `[dj * nx + di]` is the normal displacement at the centre of the
+    /// cell `(di, dj)` cells away from a cell under unit pressure, `0 <= di < nx`,
+    /// `0 <= dj < ny` (the kernel is even in both offsets).
+    fn surface_kernel_quadrant(&self, cell: f64, nx: usize, ny: usize) -> Result<Vec<f64>>;
+    /// The six stresses at depth per unit pressure on one cell; a depth equal to an
+    /// interface's is read on `interface_side`.
+    fn stress_kernels(&self, interface_side: Side) -> Box<dyn StressKernels>;
+    /// Depths of the interfaces between materials, from the surface down (none for
+    /// a homogeneous body).
+    fn interface_depths(&self) -> Vec<f64>;
+    /// The smallest plane-strain modulus `E / (1 - nu^2)` of its materials (the
+    /// automatic window's Hertz estimate uses it).
+    fn softest_modulus(&self) -> f64;
+}
+
+impl Body {
+    /// The implementation of [`ElasticBody`] for this body.
+    pub fn model(&self) -> Box<dyn ElasticBody> {
+        match *self {
+            Body::Homogeneous(material) => Box::new(HomogeneousHalfSpace { material }),
+            Body::Coated {
+                coating,
+                thickness,
+                substrate,
+            } => Box::new(CoatedHalfSpace {
+                coating,
+                thickness,
+                substrate,
+            }),
+        }
+    }
+}
+
+/// The surface-displacement kernel spectrum of `body` on `grid`'s cells, computed
+/// afresh (use [`crate::KernelCache`] to keep it across solves).
 pub fn surface_kernel_spectrum(
     body: &Body,
     grid: &Grid,
     plan: &Arc<ConvolutionPlan>,
 ) -> Result<KernelSpectrum> {
-    match *body {
-        Body::Homogeneous(material) => Ok(plan.even_kernel_spectrum(
-            &homogeneous::homogeneous_surface_kernel_quadrant(
-                material, grid.cell, grid.nx, grid.ny,
-            ),
-        )),
-        Body::Coated {
-            coating,
-            thickness,
-            substrate,
-        } => {
-            let kernel = coated::coated_surface_kernel_cached(
-                coating, thickness, substrate, grid.cell, grid.nx, grid.ny,
-            )?;
-            Ok(plan.even_kernel_spectrum(&kernel))
-        }
-    }
+    let quadrant = body
+        .model()
+        .surface_kernel_quadrant(grid.cell, grid.nx, grid.ny)?;
+    Ok(plan.even_kernel_spectrum(&quadrant))
 }

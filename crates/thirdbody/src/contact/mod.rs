@@ -2,10 +2,11 @@
 //! and the approach D such that `w_body(p) + w_layer(p) + f - D = 0` where p > 0,
 //! the gap is >= 0 where p = 0, and `sum(p) h^2 = Q` (paper eq. 3-4 and system 6).
 //!
-//! Without creep (no layer, or a linear layer at infinite velocity) the operator is
-//! symmetric positive definite and [`polonsky_keer`] conjugate gradients are used;
-//! otherwise the layer's creep makes it non-symmetric and the semi-smooth Newton
-//! iteration of [`newton`] is used. Both stop on the relative complementarity
+//! The solvers take a [`ContactProblem`] (the assembly stage, [`crate::problem`]).
+//! When the problem is symmetric positive definite (no layer, or a layer that says
+//! `w3 = c p`, [`crate::layer::LayerResponse::winkler_compliance`]) Polonsky–Keer
+//! conjugate gradients are used; otherwise (a creeping or nonlinear layer makes it
+//! non-symmetric) the semi-smooth Newton iteration with GMRES. Both stop on the relative complementarity
 //! residual `||min(p, c g)|| / ||p||` (c = inverse self-compliance of a cell), which
 //! is reported, and fail with the residual history when they do not converge. The
 //! window is chosen automatically unless the case fixes it ([`window`]): a solution
@@ -15,15 +16,12 @@ mod newton;
 mod polonsky_keer;
 pub(crate) mod window;
 
-use std::sync::Arc;
-
-use crate::body::surface_kernel_spectrum;
 use crate::case::Case;
-use crate::convolution::{ConvolutionPlan, KernelSpectrum, Parallelism};
+use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
-use crate::layer::{ComplianceLaw, LayerOperator};
-use crate::operator::{ConvolutionOperator, InfluenceOperator};
+use crate::kernel_cache::KernelCache;
+use crate::problem::ContactProblem;
 use crate::solution::{Method, Solution, SolveInfo};
 
 /// Stopping criteria and resources of a solve.
@@ -123,15 +121,88 @@ pub(crate) fn relative_complementarity_residual(p: &[f64], g: &[f64], w: &[f64])
     (num / den).sqrt()
 }
 
-/// Solves a case.
-pub fn solve(case: &Case, params: &SolverParams) -> Result<Solution> {
-    solve_observed(case, params, &mut |_| {})
+/// Records the residual history, reports each iteration to the observer and decides
+/// when to stop: the one place every iterative solver stops the same way.
+pub(crate) struct Monitor<'a> {
+    tolerance: f64,
+    observer: &'a mut dyn FnMut(Progress),
+    history: Vec<f64>,
 }
 
-/// Solves a case, reporting progress to `observer`.
+impl<'a> Monitor<'a> {
+    pub(crate) fn new(params: &SolverParams, observer: &'a mut dyn FnMut(Progress)) -> Self {
+        Monitor {
+            tolerance: params.tolerance,
+            observer,
+            history: Vec::new(),
+        }
+    }
+
+    /// Records the residual after `iteration`; true when it meets the tolerance.
+    pub(crate) fn converged(&mut self, iteration: usize, residual: f64) -> bool {
+        self.history.push(residual);
+        (self.observer)(Progress::Iteration {
+            iteration,
+            residual,
+        });
+        residual <= self.tolerance
+    }
+
+    /// The last residual recorded (infinite before any).
+    pub(crate) fn last_residual(&self) -> f64 {
+        self.history.last().copied().unwrap_or(f64::INFINITY)
+    }
+
+    /// The report of a converged solve.
+    pub(crate) fn report(
+        self,
+        iterations: usize,
+        linear_iterations: usize,
+        approach: f64,
+    ) -> SolveReport {
+        SolveReport {
+            iterations,
+            linear_iterations,
+            residual: self.last_residual(),
+            approach,
+            history: self.history,
+        }
+    }
+
+    /// The error of a solve that stopped at `residual` after `iterations`.
+    pub(crate) fn failure(self, iterations: usize, residual: f64, hint: String) -> Error {
+        Error::NoConvergence {
+            iterations,
+            residual,
+            tolerance: self.tolerance,
+            history: self.history,
+            hint,
+        }
+    }
+}
+
+/// Solves a case with a kernel cache of its own.
+pub fn solve(case: &Case, params: &SolverParams) -> Result<Solution> {
+    solve_with(case, params, &mut KernelCache::new(), &mut |_| {})
+}
+
+/// Solves a case with a kernel cache of its own, reporting progress to `observer`.
 pub fn solve_observed(
     case: &Case,
     params: &SolverParams,
+    observer: &mut dyn FnMut(Progress),
+) -> Result<Solution> {
+    solve_with(case, params, &mut KernelCache::new(), observer)
+}
+
+/// Solves a case, taking plans and kernel spectra from the caller's `kernels` (and
+/// keeping new ones there), reporting progress to `observer`. The window is the
+/// case's fixed one, or chosen automatically and enlarged or refitted until the
+/// contact fits (design's section 2).
+pub fn solve_with(
+    case: &Case,
+    params: &SolverParams,
+    kernels: &mut KernelCache,
     observer: &mut dyn FnMut(Progress),
 ) -> Result<Solution> {
     case.validate()?;
@@ -141,10 +212,8 @@ pub fn solve_observed(
     let mut warm: Option<(Grid, Vec<f64>)> = None;
     for attempt in 1..=params.max_windows.max(1) {
         observer(Progress::Window { attempt, grid });
-        let plan = ConvolutionPlan::new(grid.nx, grid.ny, params.parallelism);
-        let kernel = Arc::new(surface_kernel_spectrum(&case.body, &grid, &plan)?);
-        let mut solution =
-            solve_on_grid(case, &grid, &plan, &kernel, warm.as_ref(), params, observer)?;
+        let mut problem = case.assemble(&grid, kernels, params.parallelism)?;
+        let mut solution = solve_problem(&mut problem, warm.as_ref(), params, observer)?;
         solution.info.windows = attempt;
         let touches = grid.touches_edge(&solution.pressure);
         if fixed {
@@ -173,109 +242,71 @@ pub fn solve_observed(
     })
 }
 
-/// Solves a case on a given grid with a prepared kernel spectrum (no window
-/// adaptation): the building block for sweeps that share a grid and body.
-pub fn solve_on_grid(
-    case: &Case,
-    grid: &Grid,
-    plan: &Arc<ConvolutionPlan>,
-    kernel: &Arc<KernelSpectrum>,
+/// Solves one assembled problem on its own window (no window adaptation), from the
+/// pressure `warm` of another window if given: Polonsky–Keer CG when the problem is
+/// symmetric, semi-smooth Newton otherwise.
+pub fn solve_problem(
+    problem: &mut ContactProblem,
     warm: Option<&(Grid, Vec<f64>)>,
     params: &SolverParams,
     observer: &mut dyn FnMut(Progress),
 ) -> Result<Solution> {
-    let n = grid.len();
-    let mut f = vec![0.0; n];
-    let mut slope = vec![0.0; n];
-    case.slider.sample(grid, &mut f, &mut slope)?;
-    let mut op = ConvolutionOperator::new(plan.convolver(), Arc::clone(kernel));
-    let velocity = case.velocity();
-    let layer = case
-        .layer
-        .as_ref()
-        .map(|l| LayerOperator::new(l.clone(), grid.nx, grid.ny, grid.cell, velocity));
-    let load = case.loading.normal_load;
-    let area = grid.cell_area();
-    let estimate = window::ContactEstimate::of(case);
-
-    // Symmetric when nothing creeps and the layer, if any, is linear.
-    let winkler = match &layer {
-        None => Some(0.0),
-        Some(l) if l.creep_per_cell() == 0.0 && matches!(l.layer().law, ComplianceLaw::Linear) => {
-            Some(l.layer().compliance)
-        }
-        _ => None,
-    };
+    let grid = problem.grid;
     let mut p = match warm {
-        Some((old, old_p)) => window::interpolate(old, old_p, grid),
+        Some((old, old_p)) => window::interpolate(old, old_p, &grid),
         None => Vec::new(),
     };
-    let (method, report) = match (winkler, &layer) {
-        (Some(c_w), _) => {
-            if p.iter().all(|&v| v <= 0.0) {
-                p = window::hertz_like_guess(grid, &f, &estimate);
+    let cold = p.iter().all(|&v| v <= 0.0);
+    let (method, report) = match problem.winkler_compliance() {
+        Some(winkler) => {
+            if cold {
+                p = window::hertz_like_guess(&grid, &problem.shape, &problem.estimate);
             }
-            let r = polonsky_keer::polonsky_keer(
-                &mut op, c_w, &f, load, area, &mut p, params, observer,
-            )?;
+            let r = polonsky_keer::polonsky_keer(problem, winkler, &mut p, params, observer)?;
             (Method::PolonskyKeer, r)
         }
-        (None, Some(layer_op)) => {
-            if p.iter().all(|&v| v <= 0.0) {
-                p = window::rigid_base_guess(grid, &f, layer_op, &estimate, load);
+        None => {
+            if cold {
+                p = window::rigid_base_guess(
+                    &grid,
+                    &problem.shape,
+                    &problem.estimate,
+                    problem.load,
+                );
             }
-            let r = newton::semismooth_newton(
-                &mut op, layer_op, &f, load, area, &mut p, params, observer,
-            )?;
+            let r = newton::semismooth_newton(problem, &mut p, params, observer)?;
             (Method::SemismoothNewton, r)
         }
-        (None, None) => unreachable!("no layer always has the symmetric path"),
     };
-    assemble(
-        case,
-        grid,
-        &mut op,
-        layer.as_ref(),
-        f,
-        slope,
-        p,
-        method,
-        report,
-    )
+    finish(problem, p, method, report)
 }
 
 /// Clips round-off negatives, restores the load exactly and computes every field.
-#[allow(clippy::too_many_arguments)]
-fn assemble(
-    case: &Case,
-    grid: &Grid,
-    op: &mut dyn InfluenceOperator,
-    layer: Option<&LayerOperator>,
-    f: Vec<f64>,
-    slope: Vec<f64>,
+fn finish(
+    problem: &mut ContactProblem,
     mut p: Vec<f64>,
     method: Method,
     report: SolveReport,
 ) -> Result<Solution> {
+    let grid = problem.grid;
     let n = grid.len();
-    let load = case.loading.normal_load;
+    let load = problem.load;
     p.iter_mut().for_each(|v| *v = v.max(0.0));
     let sum: f64 = p.iter().sum();
     let scale = load / (sum * grid.cell_area());
     p.iter_mut().for_each(|v| *v *= scale);
     let mut wb = vec![0.0; n];
-    op.apply(&p, &mut wb);
-    let (wl, compliance) = match layer {
+    problem.influence.apply(&p, &mut wb);
+    let (wl, compliance) = match &problem.layer {
         Some(l) => {
             let mut wl = vec![0.0; n];
-            l.maxwell_row_sweep(&p, &mut wl);
-            let c: Vec<f64> = p.iter().map(|&v| l.layer().law_at(v).compliance).collect();
-            (Some(wl), Some(c))
+            l.displacement(&p, &mut wl);
+            (Some(wl), Some(l.compliance(&p)))
         }
         None => (None, None),
     };
     let gap: Vec<f64> = (0..n)
-        .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + f[k] - report.approach)
+        .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + problem.shape[k] - report.approach)
         .collect();
     if !p.iter().chain(&gap).all(|v| v.is_finite()) {
         return Err(Error::NoConvergence {
@@ -287,14 +318,15 @@ fn assemble(
         });
     }
     Ok(Solution {
-        grid: *grid,
+        grid,
+        body: problem.body,
         pressure: p,
         body_displacement: wb,
         layer_displacement: wl,
         compliance,
         gap,
-        shape: f,
-        shape_slope: slope,
+        shape: problem.shape.clone(),
+        shape_slope: problem.slope.clone(),
         approach: report.approach,
         normal_load: load,
         info: SolveInfo {

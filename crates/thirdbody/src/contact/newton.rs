@@ -11,12 +11,13 @@
 //! its Schur complement. When the layer dominates the body (slow sliding, soft
 //! layer) it is nearly exact and GMRES needs a handful of products per step.
 
-use super::{relative_complementarity_residual, SolveReport};
+use super::{relative_complementarity_residual, Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::{Error, Result};
 use crate::krylov::Gmres;
-use crate::layer::LayerOperator;
+use crate::layer::LayerResponse;
 use crate::operator::InfluenceOperator;
+use crate::problem::ContactProblem;
 
 /// Krylov subspace size before a restart.
 const RESTART: usize = 40;
@@ -33,7 +34,7 @@ const MIN_STEP: f64 = 1.0 / 64.0;
 #[allow(clippy::too_many_arguments)]
 fn evaluate(
     op: &mut dyn InfluenceOperator,
-    layer: &LayerOperator,
+    layer: &dyn LayerResponse,
     f: &[f64],
     p: &[f64],
     approach: f64,
@@ -43,7 +44,7 @@ fn evaluate(
     g: &mut [f64],
 ) -> f64 {
     op.apply(p, wb);
-    layer.maxwell_row_sweep(p, wl);
+    layer.displacement(p, wl);
     let mut merit = 0.0;
     for k in 0..f.len() {
         g[k] = wb[k] + wl[k] + f[k] - approach;
@@ -53,21 +54,29 @@ fn evaluate(
     merit
 }
 
-/// Runs the semi-smooth Newton iteration from `p` (overwritten), returning D.
-#[allow(clippy::too_many_arguments)]
+/// Runs the semi-smooth Newton iteration on `problem` (which has a layer) from `p`
+/// (overwritten), returning D.
 pub(crate) fn semismooth_newton(
-    op: &mut dyn InfluenceOperator,
-    layer: &LayerOperator,
-    f: &[f64],
-    load: f64,
-    cell_area: f64,
+    problem: &mut ContactProblem,
     p: &mut [f64],
     params: &SolverParams,
     observer: &mut dyn FnMut(Progress),
 ) -> Result<SolveReport> {
+    let f = &problem.shape;
+    let op = problem.influence.as_mut();
+    let Some(layer) = problem.layer.as_deref() else {
+        return Err(Error::invalid(
+            "layer",
+            "none",
+            "a layer for the semi-smooth Newton solver (a bare body is solved by CG)",
+        ));
+    };
+    let load = problem.load;
+    let cell_area = problem.grid.cell_area();
+    let mut monitor = Monitor::new(params, observer);
     let n = f.len();
     let self_coefficient = op.self_coefficient();
-    let layer0 = layer.linearise(&[0.0]).diagonal[0];
+    let layer0 = layer.zero_pressure_self_compliance();
     let stiffness = 1.0 / (self_coefficient + layer0);
     let target_sum = load / cell_area;
 
@@ -84,7 +93,7 @@ pub(crate) fn semismooth_newton(
 
     // Approach consistent with the initial pressure: zero mean gap over its support.
     op.apply(p, &mut wb);
-    layer.maxwell_row_sweep(p, &mut wl);
+    layer.displacement(p, &mut wl);
     let (mut s, mut c) = (0.0, 0usize);
     for k in 0..n {
         if p[k] > 0.0 {
@@ -93,8 +102,9 @@ pub(crate) fn semismooth_newton(
         }
     }
     let mut approach = s / c.max(1) as f64;
-    let mut history = Vec::new();
     let mut linear_iterations = 0;
+    let mut gmres = Gmres::new(0, 0);
+    let mut z1 = vec![0.0; n];
     let mut last_residual = f64::INFINITY;
 
     let mut trial = vec![0.0; n];
@@ -106,32 +116,15 @@ pub(crate) fn semismooth_newton(
             jp[k] = wb[k] + wl[k];
         }
         let residual = relative_complementarity_residual(p, &g, &jp);
-        history.push(residual);
-        observer(Progress::Iteration {
-            iteration,
-            residual,
-        });
-        if residual <= params.tolerance {
-            return Ok(SolveReport {
-                iterations: iteration,
-                linear_iterations,
-                residual,
-                approach,
-                history,
-            });
+        if monitor.converged(iteration, residual) {
+            return Ok(monitor.report(iteration, linear_iterations, approach));
         }
         last_residual = residual;
         // A folding row relation is a property of the discrete model, not of the
         // iteration: stop early and say so rather than iterate to the limit.
         if iteration % FOLD_CHECK_EVERY == 0 && residual > 1e-3 {
-            if let Some(hint) = folding_diagnosis(layer, p) {
-                return Err(Error::NoConvergence {
-                    iterations: iteration,
-                    residual,
-                    tolerance: params.tolerance,
-                    history,
-                    hint,
-                });
+            if let Some(hint) = layer.stall_diagnosis(p) {
+                return Err(monitor.failure(iteration, residual, hint));
             }
         }
 
@@ -170,7 +163,6 @@ pub(crate) fn semismooth_newton(
         for &k in &indices {
             full_in[k] = 1.0;
         }
-        let mut z1 = vec![0.0; n];
         jac.solve_restricted(self_coefficient, &active, &full_in, &mut z1);
         let z1_sum: f64 = indices.iter().map(|&k| z1[k]).sum();
 
@@ -201,7 +193,7 @@ pub(crate) fn semismooth_newton(
             out[m] = d;
         };
         let eta = (0.01 * residual).clamp(1e-13, 1e-2);
-        let mut gmres = Gmres::new(m + 1, RESTART.min(m + 1));
+        gmres.reshape(m + 1, RESTART.min(m + 1));
         let info = gmres.solve(
             &mut apply,
             &mut precondition,
@@ -237,37 +229,8 @@ pub(crate) fn semismooth_newton(
             alpha *= 0.5;
         }
     }
-    Err(Error::NoConvergence {
-        iterations: params.max_iterations,
-        residual: last_residual,
-        tolerance: params.tolerance,
-        history,
-        hint: folding_diagnosis(layer, p).unwrap_or_else(|| {
-            "raise solver.max_iterations or solver.tolerance, or refine the grid".into()
-        }),
-    })
-}
-
-/// Explains a failure caused by the model rather than the solver: where a cell's
-/// own layer response `d(instantaneous)/dp + (h / 2VT) d(C p)/dp` is not positive, the
-/// discrete row relation folds (a larger pressure gives a smaller displacement) and
-/// the contact problem has no unique solution. This happens when `C[p] p` decreases
-/// with p (the sigmoid law with delta near 1 at p well above p0) and the cells are
-/// long against the creep length V T.
-fn folding_diagnosis(layer: &LayerOperator, p: &[f64]) -> Option<String> {
-    let jac = layer.linearise(p);
-    let worst = (0..p.len())
-        .filter(|&k| p[k] > 0.0 && jac.diagonal[k] <= 0.0)
-        .map(|k| p[k])
-        .fold(f64::INFINITY, f64::min);
-    worst.is_finite().then(|| {
-        format!(
-            "the layer's row relation folds at pressures above about {worst:.3e} (its \
-             displacement falls as the pressure rises, so the discrete problem has no \
-             unique solution); this happens when C[p] p decreases with p (delta near 1, \
-             p >> p0) and the cells are long against V T (h / (V T) = {:.3e} here): use \
-             a smaller delta, a larger p0, or cells shorter than V T",
-            layer.creep_per_cell()
-        )
-    })
+    let hint = layer.stall_diagnosis(p).unwrap_or_else(|| {
+        "raise solver.max_iterations or solver.tolerance, or refine the grid".into()
+    });
+    Err(monitor.failure(params.max_iterations, last_residual, hint))
 }

@@ -6,26 +6,32 @@
 //! contact. The product `A t` of each step also updates `A p` when the projection
 //! leaves the step unchanged, so late iterations cost one convolution each.
 
-use super::{relative_complementarity_residual, SolveReport};
+use super::{relative_complementarity_residual, Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::operator::InfluenceOperator;
+use crate::problem::ContactProblem;
+
+/// What the user can try when CG stops short.
+const HINT: &str = "raise solver.max_iterations or solver.tolerance";
 
 /// Exact recomputation of `A p` at least this often, against drift of the updates.
 const REFRESH_EVERY: usize = 20;
 
-/// Runs PK-CG from the positive initial pressure in `p` (overwritten).
-#[allow(clippy::too_many_arguments)]
+/// Runs PK-CG on `problem` (whose operator is `K + winkler I`) from the positive
+/// initial pressure in `p` (overwritten).
 pub(crate) fn polonsky_keer(
-    op: &mut dyn InfluenceOperator,
+    problem: &mut ContactProblem,
     winkler: f64,
-    f: &[f64],
-    load: f64,
-    cell_area: f64,
     p: &mut [f64],
     params: &SolverParams,
     observer: &mut dyn FnMut(Progress),
 ) -> Result<SolveReport> {
+    let f = &problem.shape;
+    let op = problem.influence.as_mut();
+    let load = problem.load;
+    let cell_area = problem.grid.cell_area();
+    let mut monitor = Monitor::new(params, observer);
     let n = f.len();
     let target_sum = load / cell_area;
     normalise(p, target_sum);
@@ -43,7 +49,6 @@ pub(crate) fn polonsky_keer(
     apply(op, p, &mut u);
     let mut conjugate = false;
     let mut g_old = 1.0;
-    let mut history = Vec::new();
     let mut since_refresh = 0;
     for iteration in 1..=params.max_iterations {
         // Gap with D chosen as the mean over the contact.
@@ -58,20 +63,9 @@ pub(crate) fn polonsky_keer(
         let approach = sum / count.max(1) as f64;
         g.iter_mut().for_each(|v| *v -= approach);
         let residual = relative_complementarity_residual(p, &g, &u);
-        history.push(residual);
-        observer(Progress::Iteration {
-            iteration,
-            residual,
-        });
-        if residual <= params.tolerance {
+        if monitor.converged(iteration, residual) {
             if since_refresh == 0 {
-                return Ok(SolveReport {
-                    iterations: iteration,
-                    linear_iterations: 0,
-                    residual,
-                    approach,
-                    history,
-                });
+                return Ok(monitor.report(iteration, 0, approach));
             }
             // Confirm on an exactly recomputed A p before stopping.
             apply(op, p, &mut u);
@@ -105,7 +99,7 @@ pub(crate) fn polonsky_keer(
             }
         }
         if den <= 0.0 || !den.is_finite() {
-            return Err(no_convergence(iteration, residual, params, history));
+            return Err(monitor.failure(iteration, residual, HINT.into()));
         }
         let tau = num / den;
         let mut projected = false;
@@ -138,13 +132,8 @@ pub(crate) fn polonsky_keer(
             since_refresh += 1;
         }
     }
-    let residual = history.last().copied().unwrap_or(f64::INFINITY);
-    Err(no_convergence(
-        params.max_iterations,
-        residual,
-        params,
-        history,
-    ))
+    let residual = monitor.last_residual();
+    Err(monitor.failure(params.max_iterations, residual, HINT.into()))
 }
 
 /// Scales `p` to the given sum; returns the factor.
@@ -153,19 +142,4 @@ fn normalise(p: &mut [f64], target_sum: f64) -> f64 {
     let scale = if s > 0.0 { target_sum / s } else { 1.0 };
     p.iter_mut().for_each(|v| *v *= scale);
     scale
-}
-
-fn no_convergence(
-    iterations: usize,
-    residual: f64,
-    params: &SolverParams,
-    history: Vec<f64>,
-) -> Error {
-    Error::NoConvergence {
-        iterations,
-        residual,
-        tolerance: params.tolerance,
-        history,
-        hint: "raise solver.max_iterations or solver.tolerance".into(),
-    }
 }

@@ -6,10 +6,10 @@
 //! (design.md §1a). After a solve the window is enlarged if the contact reaches its
 //! edge, and refitted once if the contact fills too little of it.
 
-use crate::case::{Body, Case, Elastic};
+use crate::case::Case;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
-use crate::layer::LayerOperator;
+use crate::layer::LayerEstimate;
 use crate::solution::Solution;
 
 /// Margin of the window around the estimated contact.
@@ -30,27 +30,22 @@ pub(crate) struct ContactEstimate {
     pub leading_extent: f64,
     /// Effective plane-strain modulus of the body.
     pub modulus: f64,
-}
-
-fn softest(body: &Body) -> f64 {
-    let e = |m: Elastic| m.plane_strain_modulus();
-    match *body {
-        Body::Homogeneous(m) => e(m),
-        Body::Coated {
-            coating, substrate, ..
-        } => e(coating).min(e(substrate)),
-    }
+    /// The linear layer the guesses assume, if there is a layer.
+    pub layer: Option<LayerEstimate>,
+    /// Sliding velocity (infinite for none).
+    pub velocity: f64,
 }
 
 impl ContactEstimate {
     pub fn of(case: &Case) -> Self {
         let r = case.slider.equivalent_radius();
         let q = case.loading.normal_load;
-        let modulus = softest(&case.body);
+        let modulus = case.body.model().softest_modulus();
         let hertz = (3.0 * q * r / (4.0 * modulus)).cbrt();
         let (mut symmetric, mut leading) = (hertz, hertz);
-        if let Some(layer) = &case.layer {
-            let c0 = layer.zero_pressure_compliance();
+        let layer = case.layer.as_ref().map(|l| l.estimate());
+        if let Some(layer) = &layer {
+            let c0 = layer.compliance;
             let winkler = (4.0 * r * c0 * q / std::f64::consts::PI).powf(0.25);
             symmetric = hertz.max(winkler);
             let vt = case.velocity() * layer.relaxation_time;
@@ -67,6 +62,8 @@ impl ContactEstimate {
             symmetric_radius: symmetric,
             leading_extent: leading,
             modulus,
+            layer,
+            velocity: case.velocity(),
         }
     }
 }
@@ -202,15 +199,15 @@ pub(crate) fn hertz_like_guess(grid: &Grid, f: &[f64], e: &ContactEstimate) -> V
 /// the body's effective compliance `pi a / (2 E*)` (Hertz centre displacement over
 /// peak pressure) plus the linear layer of compliance C0 with its creep, solved row
 /// by row from the leading edge; D is found by bisection on the load.
-pub(crate) fn rigid_base_guess(
-    grid: &Grid,
-    f: &[f64],
-    layer: &LayerOperator,
-    e: &ContactEstimate,
-    load: f64,
-) -> Vec<f64> {
-    let c0 = layer.layer().zero_pressure_compliance();
-    let kc = layer.creep_per_cell();
+pub(crate) fn rigid_base_guess(grid: &Grid, f: &[f64], e: &ContactEstimate, load: f64) -> Vec<f64> {
+    let (c0, relaxation_time) = e
+        .layer
+        .map_or((0.0, f64::INFINITY), |l| (l.compliance, l.relaxation_time));
+    let kc = if e.velocity.is_infinite() {
+        0.0
+    } else {
+        grid.cell / (e.velocity * relaxation_time)
+    };
     let body = std::f64::consts::PI * e.symmetric_radius / (2.0 * e.modulus);
     let diag = body + c0 * (1.0 + 0.5 * kc);
     let nx = grid.nx;

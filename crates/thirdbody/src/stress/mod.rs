@@ -140,19 +140,7 @@ impl StressField {
 /// `interface_side`.
 pub fn stress_kernels(body: &Body, interface_side: Side) -> Result<Box<dyn StressKernels>> {
     body.validate()?;
-    match *body {
-        Body::Homogeneous(material) => Ok(Box::new(HomogeneousStressKernels { material })),
-        Body::Coated {
-            coating,
-            thickness,
-            substrate,
-        } => Ok(Box::new(CoatedStressKernels {
-            coating,
-            thickness,
-            substrate,
-            interface_side,
-        })),
-    }
+    Ok(body.model().stress_kernels(interface_side))
 }
 
 /// Checks a list of depths: at least one, each finite and >= 0.
@@ -219,7 +207,7 @@ pub fn stresses(
         Section::Plane { z } => check_depth("stress.z", *z)?,
         Section::Block { depths } => check_depths(depths)?,
         Section::Interface { .. } => {
-            if !matches!(body, Body::Coated { .. }) {
+            if body.model().interface_depths().is_empty() {
                 return Err(Error::invalid(
                     "stress.sections",
                     "interface",
@@ -255,9 +243,7 @@ pub fn stresses(
             components: sections::planes(grid, pressure, kernels.as_ref(), depths),
         },
         Section::Interface { .. } => {
-            let Body::Coated { thickness, .. } = *body else {
-                unreachable!("an interface section on a homogeneous body is rejected above")
-            };
+            let thickness = body.model().interface_depths()[0];
             StressField {
                 xs,
                 ys: all_ys(),
@@ -270,8 +256,14 @@ pub fn stresses(
 }
 
 impl Solution {
-    /// Subsurface stresses of this solution's pressure on `body` (the case's body).
-    pub fn stresses(&self, body: &Body, section: &Section) -> Result<StressField> {
-        stresses(&self.grid, &self.pressure, body, section)
+    /// Subsurface stresses of this solution's pressure on the body it was solved on.
+    pub fn stresses(&self, section: &Section) -> Result<StressField> {
+        stresses(&self.grid, &self.pressure, &self.body, section)
+    }
+
+    /// The stresses and their summary that `request` asks for, on the body this
+    /// solution was solved on.
+    pub fn stress_results(&self, request: &StressRequest) -> Result<StressResults> {
+        request.compute(&self.body, &self.grid, &self.pressure)
     }
 }

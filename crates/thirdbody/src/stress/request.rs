@@ -183,7 +183,7 @@ impl StressRequest {
                         "each section once",
                     ));
                 }
-                if *kind == SectionKind::Interface && !matches!(body, Body::Coated { .. }) {
+                if *kind == SectionKind::Interface && body.model().interface_depths().is_empty() {
                     return Err(Error::invalid(
                         "stress.sections",
                         "interface",
@@ -201,7 +201,7 @@ impl StressRequest {
             Some(k) => k.clone(),
             None => {
                 let mut k = vec![SectionKind::Xz, SectionKind::Surface];
-                if matches!(body, Body::Coated { .. }) {
+                if !body.model().interface_depths().is_empty() {
                     k.push(SectionKind::Interface);
                 }
                 k

@@ -1,0 +1,185 @@
+//! The caller-owned store of what is costly to build and reusable between solves:
+//! DC-FFT plans (one per grid size and parallelism) and surface-kernel spectra (one
+//! per body, grid size and cell size; a coated kernel costs 0.1-6 s at 256²). Like
+//! rustfft's `FftPlanner`, it is an ordinary value: the CLI's `solve` makes one, each
+//! sweep worker has its own, a Python `Solver` would own one. Nothing is global, two
+//! caches never share data, and the caller sizes it ([`KernelCache::with_capacity`])
+//! and empties it ([`KernelCache::clear`]). Cached spectra are bitwise those built
+//! afresh.
+
+use std::sync::Arc;
+
+use crate::body::surface_kernel_spectrum;
+use crate::case::Body;
+use crate::convolution::{ConvolutionPlan, KernelSpectrum, Parallelism};
+use crate::error::Result;
+use crate::grid::Grid;
+
+/// Spectra kept by default: the windows an automatic solve tries for a few bodies.
+const DEFAULT_CAPACITY: usize = 8;
+
+/// What a surface-kernel spectrum depends on: the body, the grid size and the cell
+/// size (bitwise).
+#[derive(Debug, Clone, PartialEq)]
+struct SpectrumKey {
+    body: Body,
+    cells: [usize; 2],
+    cell_bits: u64,
+}
+
+/// What a DC-FFT plan depends on: the grid size and the parallelism.
+type PlanKey = ([usize; 2], Parallelism);
+
+/// Plans and kernel spectra kept between solves, least recently used dropped first.
+#[derive(Debug)]
+pub struct KernelCache {
+    capacity: usize,
+    plans: Vec<(PlanKey, Arc<ConvolutionPlan>)>,
+    spectra: Vec<(SpectrumKey, Arc<KernelSpectrum>)>,
+}
+
+impl Default for KernelCache {
+    fn default() -> Self {
+        KernelCache::with_capacity(DEFAULT_CAPACITY)
+    }
+}
+
+impl KernelCache {
+    /// An empty cache that keeps up to 8 spectra and 8 plans.
+    pub fn new() -> Self {
+        KernelCache::default()
+    }
+
+    /// An empty cache that keeps up to `capacity` spectra and as many plans (0 keeps
+    /// nothing: every solve builds its own).
+    pub fn with_capacity(capacity: usize) -> Self {
+        KernelCache {
+            capacity,
+            plans: Vec::new(),
+            spectra: Vec::new(),
+        }
+    }
+
+    /// Spectra held now.
+    pub fn len(&self) -> usize {
+        self.spectra.len()
+    }
+
+    /// Whether no spectrum is held.
+    pub fn is_empty(&self) -> bool {
+        self.spectra.is_empty()
+    }
+
+    /// Drops every plan and spectrum.
+    pub fn clear(&mut self) {
+        self.plans.clear();
+        self.spectra.clear();
+    }
+
+    /// The DC-FFT plan for fields of `nx x ny` cells.
+    pub fn plan(&mut self, nx: usize, ny: usize, parallelism: Parallelism) -> Arc<ConvolutionPlan> {
+        let key: PlanKey = ([nx, ny], parallelism);
+        if let Some(k) = self.plans.iter().position(|(k, _)| *k == key) {
+            let entry = self.plans.remove(k);
+            let plan = Arc::clone(&entry.1);
+            self.plans.push(entry);
+            return plan;
+        }
+        let plan = ConvolutionPlan::new(nx, ny, parallelism);
+        keep(&mut self.plans, (key, Arc::clone(&plan)), self.capacity);
+        plan
+    }
+
+    /// The surface-kernel spectrum of `body` on `grid`'s cells, built on `plan`
+    /// (which must be for `grid`'s size) unless held.
+    pub fn surface_spectrum(
+        &mut self,
+        body: &Body,
+        grid: &Grid,
+        plan: &Arc<ConvolutionPlan>,
+    ) -> Result<Arc<KernelSpectrum>> {
+        let key = SpectrumKey {
+            body: *body,
+            cells: [grid.nx, grid.ny],
+            cell_bits: grid.cell.to_bits(),
+        };
+        if let Some(k) = self.spectra.iter().position(|(k, _)| *k == key) {
+            let entry = self.spectra.remove(k);
+            let spectrum = Arc::clone(&entry.1);
+            self.spectra.push(entry);
+            return Ok(spectrum);
+        }
+        let spectrum = Arc::new(surface_kernel_spectrum(body, grid, plan)?);
+        keep(
+            &mut self.spectra,
+            (key, Arc::clone(&spectrum)),
+            self.capacity,
+        );
+        Ok(spectrum)
+    }
+}
+
+/// Appends `entry` as the most recently used, dropping the oldest beyond `capacity`.
+fn keep<T>(entries: &mut Vec<T>, entry: T, capacity: usize) {
+    if capacity == 0 {
+        return;
+    }
+    if entries.len() >= capacity {
+        entries.remove(0);
+    }
+    entries.push(entry);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::Elastic;
+
+    fn coated(thickness: f64) -> Body {
+        Body::Coated {
+            coating: Elastic {
+                young: 3.0,
+                poisson: 0.3,
+            },
+            thickness,
+            substrate: Elastic {
+                young: 1.0,
+                poisson: 0.3,
+            },
+        }
+    }
+
+    #[test]
+    fn a_held_spectrum_is_shared_and_equals_a_fresh_one() {
+        let grid = Grid::centred(16, 12, 0.5, [0.0, 0.0]).unwrap();
+        let mut cache = KernelCache::new();
+        let plan = cache.plan(16, 12, Parallelism::Sequential);
+        let first = cache.surface_spectrum(&coated(0.37), &grid, &plan).unwrap();
+        let again = cache.surface_spectrum(&coated(0.37), &grid, &plan).unwrap();
+        assert!(Arc::ptr_eq(&first, &again));
+        let other = cache.surface_spectrum(&coated(0.38), &grid, &plan).unwrap();
+        assert!(!Arc::ptr_eq(&first, &other));
+        assert_eq!(cache.len(), 2);
+        let fresh = surface_kernel_spectrum(&coated(0.37), &grid, &plan).unwrap();
+        assert_eq!(format!("{fresh:?}"), format!("{first:?}"));
+        // A bad body is an error, and nothing is kept for it.
+        assert!(cache.surface_spectrum(&coated(-1.0), &grid, &plan).is_err());
+        assert_eq!(cache.len(), 2);
+    }
+
+    #[test]
+    fn capacity_bounds_what_is_held_and_clear_empties_it() {
+        let grid = Grid::centred(8, 8, 0.5, [0.0, 0.0]).unwrap();
+        let mut cache = KernelCache::with_capacity(2);
+        let plan = cache.plan(8, 8, Parallelism::Sequential);
+        for t in [0.1, 0.2, 0.3] {
+            cache.surface_spectrum(&coated(t), &grid, &plan).unwrap();
+        }
+        assert_eq!(cache.len(), 2);
+        cache.clear();
+        assert!(cache.is_empty());
+        let mut none = KernelCache::with_capacity(0);
+        none.surface_spectrum(&coated(0.1), &grid, &plan).unwrap();
+        assert!(none.is_empty());
+    }
+}

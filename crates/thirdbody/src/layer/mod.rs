@@ -1,0 +1,152 @@
+//! The third-body layer between the slider and the body: its data as a case gives it
+//! ([`Layer`]), and the interface through which the contact solvers see any layer
+//! rheology on a grid ([`LayerResponse`], [`LayerLinearisation`]). The solvers know
+//! nothing else of the layer: the displacement `w3(p)` for a pressure field, its
+//! Jacobian (applied, and solved row-wise as a preconditioner), whether `w3 = c p`
+//! exactly (then the contact problem is symmetric and conjugate gradients apply), the
+//! compliance field to report, and a diagnosis when the model has no unique solution.
+//! Each rheology is one implementation in its own file; [`Layer::on_grid`] is the one
+//! place that picks it. Today: the nonlinear Maxwell layer of the paper (eq. 2,
+//! [`maxwell`]). The pressure dependence `C[p]` is apart, in [`law`].
+//!
+//! Conventions (docs/architecture.md): material enters the window at its largest x and
+//! moves in -x, so a layer's response is causal along each row from the leading edge;
+//! rows (fixed y) do not interact.
+
+pub mod law;
+pub mod maxwell;
+
+pub use law::{ComplianceLaw, LawValue, Table};
+pub use maxwell::{MaxwellJacobian, MaxwellRows};
+
+use crate::error::{require_positive, Error, Result};
+use crate::grid::Grid;
+
+/// How eq. 2 is integrated over a cell (see [`maxwell`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Integration {
+    /// Exact integration: the instantaneous part is `G(p)`.
+    #[default]
+    Exact,
+    /// The paper's eq. 8 with the loaded cell's secant compliance: `C[p] p`.
+    Secant,
+}
+
+/// A viscoelastic third-body layer, as a case describes it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layer {
+    /// Compliance at zero pressure, C0 (displacement per pressure).
+    pub compliance: f64,
+    /// Relaxation time T.
+    pub relaxation_time: f64,
+    /// Pressure dependence of the compliance.
+    pub law: ComplianceLaw,
+    /// Integration of eq. 2 over a cell.
+    pub integration: Integration,
+}
+
+/// What the automatic window and the initial guesses need of a layer: a linear
+/// layer that behaves like it (compliance `compliance`, creeping with time constant
+/// `relaxation_time`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LayerEstimate {
+    /// Compliance of the layer at small pressure.
+    pub compliance: f64,
+    /// Time over which it creeps (infinite for no creep).
+    pub relaxation_time: f64,
+}
+
+/// A layer rheology on a grid at a sliding velocity: what the contact solvers see.
+pub trait LayerResponse: std::fmt::Debug + Send + Sync {
+    /// The layer's normal displacement `w3` of every cell for the pressure `p`.
+    fn displacement(&self, p: &[f64], w3: &mut [f64]);
+    /// The Jacobian `dw3/dp` at `p`, for Newton steps.
+    fn linearise(&self, p: &[f64]) -> Box<dyn LayerLinearisation>;
+    /// A cell's own `dw3/dp` at zero pressure (sets the solvers' pressure scale).
+    fn zero_pressure_self_compliance(&self) -> f64;
+    /// `Some(c)` when `w3 = c p` exactly (a creep-free linear spring bed): the contact
+    /// operator is then symmetric positive definite and conjugate gradients apply.
+    fn winkler_compliance(&self) -> Option<f64>;
+    /// Why the contact problem has no unique solution at `p`, if the model says so
+    /// (checked when Newton stalls); `None` when the layer is not to blame.
+    fn stall_diagnosis(&self, p: &[f64]) -> Option<String>;
+    /// The compliance `C[p]` of every cell, to report (paper Fig. 3b).
+    fn compliance(&self, p: &[f64]) -> Vec<f64>;
+}
+
+/// The linearised layer `J = dw3/dp`, lower triangular along each row in the order
+/// of the material path (from the largest x).
+pub trait LayerLinearisation {
+    /// `out = J dp`.
+    fn apply(&self, dp: &[f64], out: &mut [f64]);
+    /// Solves `(J + extra_diagonal I) y = r` restricted to the cells where `active` is
+    /// true (others get 0), by forward substitution along each row from the leading
+    /// edge; a preconditioner, so diagonals that are not safely positive may be
+    /// replaced by `extra_diagonal`.
+    fn solve_restricted(&self, extra_diagonal: f64, active: &[bool], r: &[f64], y: &mut [f64]);
+}
+
+impl Layer {
+    pub(crate) fn validate(&self) -> Result<()> {
+        if !matches!(self.law, ComplianceLaw::Table(_)) {
+            require_positive("layer.compliance", self.compliance)?;
+        }
+        require_positive("layer.relaxation_time", self.relaxation_time)?;
+        if let ComplianceLaw::Sigmoid { delta, p0 } = self.law {
+            if !(0.0..=1.0).contains(&delta) {
+                return Err(Error::invalid("layer.delta", delta, "0 <= delta <= 1"));
+            }
+            require_positive("layer.p0", p0)?;
+        }
+        Ok(())
+    }
+
+    /// The layer's response on `grid`'s cells at sliding velocity `velocity` (may be
+    /// infinite): the one place where a case's layer picks its rheology.
+    pub fn on_grid(&self, grid: &Grid, velocity: f64) -> Box<dyn LayerResponse> {
+        Box::new(MaxwellRows::new(
+            self.clone(),
+            grid.nx,
+            grid.ny,
+            grid.cell,
+            velocity,
+        ))
+    }
+
+    /// The linear layer the automatic window and the initial guesses assume.
+    pub fn estimate(&self) -> LayerEstimate {
+        LayerEstimate {
+            compliance: self.zero_pressure_compliance(),
+            relaxation_time: self.relaxation_time,
+        }
+    }
+
+    /// Compliance at zero pressure.
+    pub fn zero_pressure_compliance(&self) -> f64 {
+        match &self.law {
+            ComplianceLaw::Table(t) => t.compliances()[0],
+            _ => self.compliance,
+        }
+    }
+
+    /// The compliance law at pressure p (continued with C0 below zero).
+    pub fn law_at(&self, p: f64) -> LawValue {
+        self.law.at(self.zero_pressure_compliance(), p)
+    }
+
+    /// Instantaneous displacement of a cell and its derivative: `G(p)` (exact) or
+    /// `C[p] p` (secant).
+    pub fn instantaneous(&self, p: f64) -> (f64, f64) {
+        let l = self.law_at(p);
+        match self.integration {
+            Integration::Exact => (l.integral, l.compliance),
+            Integration::Secant => (l.compliance * p, l.compliance + l.slope * p.max(0.0)),
+        }
+    }
+
+    /// Creep rate density `C[p] p` and its derivative.
+    pub fn creep(&self, p: f64) -> (f64, f64) {
+        let l = self.law_at(p);
+        (l.compliance * p, l.compliance + l.slope * p.max(0.0))
+    }
+}

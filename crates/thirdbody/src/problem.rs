@@ -1,0 +1,129 @@
+//! The assembly stage (docs/architecture.md): a [`Case`] (plain data) and a window
+//! become the numerical contact problem the solvers see, [`ContactProblem`]: the
+//! body's influence operator `K` (a DC-FFT convolution with the body's kernel
+//! spectrum), the layer's response `w3(p)` (any rheology, through
+//! [`LayerResponse`]), the slider's height f and slope df/dx at the cell centres, and
+//! the load Q. The conditions it poses are design's eq. 3-4 and the paper's system
+//! (6): `K p + w3(p) + f - D = 0` where p > 0, the gap >= 0 where p = 0, and
+//! `sum(p) h^2 = Q`. The solvers hold only their iteration state; nothing in them
+//! knows which body or rheology the problem came from.
+
+use std::sync::Arc;
+
+use crate::case::{Body, Case};
+use crate::contact::window::ContactEstimate;
+use crate::convolution::Parallelism;
+use crate::error::Result;
+use crate::grid::Grid;
+use crate::kernel_cache::KernelCache;
+use crate::layer::LayerResponse;
+use crate::operator::{ConvolutionOperator, InfluenceOperator};
+
+/// One contact problem on one window, ready for a solver.
+pub struct ContactProblem {
+    pub(crate) grid: Grid,
+    /// The case's body, for the solution (stresses) and the dense reference.
+    pub(crate) body: Body,
+    pub(crate) influence: Box<dyn InfluenceOperator + Send>,
+    pub(crate) layer: Option<Box<dyn LayerResponse>>,
+    pub(crate) shape: Vec<f64>,
+    pub(crate) slope: Vec<f64>,
+    pub(crate) load: f64,
+    pub(crate) estimate: ContactEstimate,
+}
+
+impl std::fmt::Debug for ContactProblem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ContactProblem")
+            .field("grid", &self.grid)
+            .field("body", &self.body)
+            .field("layer", &self.layer)
+            .field("load", &self.load)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Case {
+    /// Builds the contact problem of this case on `grid`, taking the FFT plan and the
+    /// body's kernel spectrum from `kernels` (built there if not held).
+    pub fn assemble(
+        &self,
+        grid: &Grid,
+        kernels: &mut KernelCache,
+        parallelism: Parallelism,
+    ) -> Result<ContactProblem> {
+        let plan = kernels.plan(grid.nx, grid.ny, parallelism);
+        let spectrum = kernels.surface_spectrum(&self.body, grid, &plan)?;
+        let influence = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum));
+        let n = grid.len();
+        let mut shape = vec![0.0; n];
+        let mut slope = vec![0.0; n];
+        self.slider.sample(grid, &mut shape, &mut slope)?;
+        let velocity = self.velocity();
+        Ok(ContactProblem {
+            grid: *grid,
+            body: self.body,
+            influence: Box::new(influence),
+            layer: self.layer.as_ref().map(|l| l.on_grid(grid, velocity)),
+            shape,
+            slope,
+            load: self.loading.normal_load,
+            estimate: ContactEstimate::of(self),
+        })
+    }
+}
+
+impl ContactProblem {
+    /// A problem from its parts, for driving the solvers with other operators (a
+    /// dense matrix in tests). `shape` and `slope` are f and df/dx per cell.
+    pub fn from_parts(
+        case: &Case,
+        grid: &Grid,
+        influence: Box<dyn InfluenceOperator + Send>,
+        shape: Vec<f64>,
+        slope: Vec<f64>,
+    ) -> Self {
+        ContactProblem {
+            grid: *grid,
+            body: case.body,
+            influence,
+            layer: case
+                .layer
+                .as_ref()
+                .map(|l| l.on_grid(grid, case.velocity())),
+            shape,
+            slope,
+            load: case.loading.normal_load,
+            estimate: ContactEstimate::of(case),
+        }
+    }
+
+    /// The window and cells.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The slider's height f at the cell centres.
+    pub fn shape(&self) -> &[f64] {
+        &self.shape
+    }
+
+    /// The normal load Q.
+    pub fn load(&self) -> f64 {
+        self.load
+    }
+
+    /// The layer's response, if there is a layer.
+    pub fn layer(&self) -> Option<&dyn LayerResponse> {
+        self.layer.as_deref()
+    }
+
+    /// `Some(c_w)` when the operator is symmetric positive definite (`K + c_w I`:
+    /// no layer, c_w = 0, or a creep-free linear layer): conjugate gradients apply.
+    pub fn winkler_compliance(&self) -> Option<f64> {
+        match &self.layer {
+            None => Some(0.0),
+            Some(l) => l.winkler_compliance(),
+        }
+    }
+}
