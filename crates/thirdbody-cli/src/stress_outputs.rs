@@ -16,6 +16,7 @@ use anyhow::{Context, Result};
 use ndarray::Array4;
 use serde_json::Value;
 use thirdbody::report::StressReport;
+use thirdbody::stress::{SectionId, Side};
 use thirdbody::stress::{StressField, StressResults};
 use thirdbody::Units;
 use thirdbody_cli::plot::{self, Series};
@@ -84,7 +85,7 @@ pub fn write_stress(
 ) -> Result<()> {
     let l = labels(units);
     for (named, f) in &results.sections {
-        let name = &named.name;
+        let name = named.name();
         let fields = all_fields(f);
         if formats.npy {
             out.write(&format!("stress_{name}.npy"), |p| write_npy(p, f, &fields))?;
@@ -92,7 +93,7 @@ pub fn write_stress(
         if formats.csv {
             out.write(&format!("stress_{name}.csv"), |p| write_csv(p, f, &fields))?;
         }
-        if formats.vtk && name == "block" {
+        if formats.vtk && named.id == SectionId::Block {
             out.write("stress_block.vti", |p| {
                 let spacing = f.xs.get(1).map_or(1.0, |x1| x1 - f.xs[0]);
                 let lattice = vtk::Lattice::from_axes([&f.xs, &f.ys, &f.zs], spacing)?;
@@ -104,7 +105,7 @@ pub fn write_stress(
                 vtk::write_image_data(p, &lattice, &named)
             })?;
         }
-        if name == "xz" && f.xs.len() >= 2 && f.zs.len() >= 2 {
+        if named.id == SectionId::Xz && f.xs.len() >= 2 && f.zs.len() >= 2 {
             let y = f.ys[0];
             for (field, what) in [(9, "tau1"), (0, "sigma_x")] {
                 out.write(&format!("stress_xz_{what}.png"), |p| {
@@ -128,17 +129,17 @@ pub fn write_stress(
     let y_line = results
         .sections
         .iter()
-        .find(|(n, _)| n.name == "xz")
+        .find(|(n, _)| n.id == SectionId::Xz)
         .map_or(0.0, |(_, f)| f.ys[0]);
     let mut row_y = y_line;
     let series: Vec<Series> = results
         .sections
         .iter()
         .filter_map(|(named, f)| {
-            let label = match named.name.as_str() {
-                "surface" => "surface",
-                "interface_coating" => "interface, coating side",
-                "interface_substrate" => "interface, substrate side",
+            let label = match named.id {
+                SectionId::Surface => "surface",
+                SectionId::Interface(Side::Coating) => "interface, coating side",
+                SectionId::Interface(Side::Substrate) => "interface, substrate side",
                 _ => return None,
             };
             let j = nearest(&f.ys, y_line)?;
@@ -149,7 +150,7 @@ pub fn write_stress(
                 y: (0..f.xs.len())
                     .map(|i| f.components[0][f.index(i, j, 0)])
                     .collect(),
-                dashed: named.name == "interface_substrate",
+                dashed: named.id == SectionId::Interface(Side::Substrate),
             })
         })
         .collect();

@@ -1,5 +1,5 @@
 //! The surface grid: `nx x ny` square cells of side `h` covering a rectangular window
-//! of the slider-fixed frame (design.md §2). Cell `(i, j)` has its centre at
+//! of the slider-fixed frame (docs/architecture.md (numerics)). Cell `(i, j)` has its centre at
 //! `x_i = x0 + (i + 1/2) h`, `y_j = y0 + (j + 1/2) h`; fields on the grid are stored
 //! row-major with rows along y: value of cell `(i, j)` at index `j * nx + i`.
 //! x is the sliding direction (body material flows through the contact in -x).

@@ -2,7 +2,7 @@
 //! viscoelastic "third-body" layer lying on a homogeneous or coated elastic
 //! half-space (Lubricants 2023, 11, 333).
 //!
-//! Conventions (design.md §1): the frame is fixed to the slider, which moves in +x
+//! Conventions (docs/architecture.md (conventions)): the frame is fixed to the slider, which moves in +x
 //! over the body, so body material flows through the contact in -x. z points into
 //! the body. Pressure is positive in compression; stresses are positive in tension.
 //! Fields on the grid are row-major with rows along y (`field[j * nx + i]`).

@@ -83,7 +83,7 @@ impl StressReport {
                 .sections
                 .iter()
                 .map(|(named, f)| SectionReport {
-                    name: named.name.clone(),
+                    name: named.name(),
                     points: [f.xs.len(), f.ys.len(), f.zs.len()],
                     depths: f.zs.clone(),
                     y: match f.ys[..] {

@@ -1,6 +1,6 @@
 //! Slider shapes: the initial separation f(x, y) between the slider and the flat
 //! layer surface, measured from the slider's lowest point (paper eq. 3 with
-//! design.md §1's sign: the contact condition is `w = D - f`), and its slope
+//! the sign of docs/architecture.md (conventions): the contact condition is `w = D - f`), and its slope
 //! df/dx, which gives the hysteresis friction `mu = sum(p df/dx) h^2 / Q`
 //! (the general form of paper eq. 12). Shapes are sampled at cell centres.
 

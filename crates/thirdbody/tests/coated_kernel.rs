@@ -55,7 +55,7 @@ fn equal_materials_give_the_homogeneous_closed_form() {
 
 #[test]
 fn thin_coating_tends_to_the_substrate_at_first_order() {
-    // The kernel differs from the substrate's by O(h1) (design.md §2): halving h1
+    // The kernel differs from the substrate's by O(h1) (docs/architecture.md (numerics)): halving h1
     // halves the difference once h1 is well below the cell (the next term, of
     // order h1^2 log h1, slows the approach to 1/2 at larger h1).
     let (coating, substrate) = (elastic(3.0, 0.3), elastic(1.0, 0.25));

@@ -256,7 +256,7 @@ fn interface_tractions_and_in_plane_strains_are_continuous() {
             for q in 0..3 {
                 strain = strain.max((ea[q] - eb[q]).abs() / eps_scale);
             }
-            // design.md §2: sigma_x(side j) = E_j/(1 - nu_j^2) (eps_xx + nu_j eps_yy)
+            // docs/architecture.md (numerics): sigma_x(side j) = E_j/(1 - nu_j^2) (eps_xx + nu_j eps_yy)
             // + nu_j/(1 - nu_j) sigma_z, with the substrate's strains for both sides.
             let (e1, nu1) = (coating.young, coating.poisson);
             let predicted =

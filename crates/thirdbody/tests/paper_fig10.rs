@@ -9,7 +9,7 @@
 //!   tau1_max grows with delta (paper section 4: "an increase ... of almost 35 percent");
 //! - tau1_max is finite and positive, and lies below the surface, ahead of the point of
 //!   initial contact (x > 0): the creep of the layer shifts the pressure to the leading
-//!   edge (design.md §1, body material enters at the largest x);
+//!   edge (docs/architecture.md (conventions), body material enters at the largest x);
 //! - for a frictionless surface load the maximum shear is bounded by the Hertz-like
 //!   range 0.2..0.45 p_max (Hertz: 0.31 p_max at 0.48 a; Johnson, Contact Mechanics,
 //!   §3.4): a check against an independent value that catches unit or scaling slips.

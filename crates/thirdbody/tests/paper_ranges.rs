@@ -1,10 +1,10 @@
-//! Issue 2: the solver converges for every case in the paper's ranges (design.md §2:
+//! Issue 2: the solver converges for every case in the paper's ranges (docs/architecture.md (numerics):
 //! V' from 1e-4 to 1e-1, delta 0..1, p0' 0.001..0.05, C' up to 1), tried at the
 //! corners of that box for both integrations and the paper's two loads.
 //!
 //! One corner is outside what the discrete model can solve: with delta = 1 the creep
 //! rate C[p] p falls with p above ~1.3 p0, and where the cells are long against the
-//! creep length V T a cell's own response folds (design.md §1, "exact" and
+//! creep length V T a cell's own response folds (docs/architecture.md (conventions), "exact" and
 //! "secant"); the problem then has no unique solution and the solver must say so
 //! (it names the folding) instead of returning a result. Every other corner must
 //! converge.

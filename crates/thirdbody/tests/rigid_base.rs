@@ -226,7 +226,7 @@ fn fast_creep_gives_the_half_disc_asymptote() {
         assert!(s.x_min < 0.0 && s.x_min >= -l);
         errors.push((l / radius, e, rel(s.max_pressure, l * radius / (c0 * r))));
     }
-    // design.md §1a quotes r ~ 0.053 for V' = 1e-3.
+    // docs/architecture.md (readings of the paper) quotes r ~ 0.053 for V' = 1e-3.
     assert!((0.0531 - (3.0 * 5e-6 * 0.02 / 2e-3f64).powf(1.0 / 3.0)).abs() < 1e-4);
     for &(ratio, e_radius, e_pmax) in &errors {
         // Next order: a row of half width b >> L carries (L / (R C0)) (b^2 - L^2) / 2,

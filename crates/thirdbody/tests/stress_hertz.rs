@@ -274,11 +274,7 @@ fn stress_request_summary_on_the_solver_hertz_pressure() {
     let results = request
         .compute(&case.body, &solution.grid, &solution.pressure)
         .unwrap();
-    let names: Vec<&str> = results
-        .sections
-        .iter()
-        .map(|(n, _)| n.name.as_str())
-        .collect();
+    let names: Vec<String> = results.sections.iter().map(|(n, _)| n.name()).collect();
     assert_eq!(names, ["xz", "surface"]);
     let s = results.summary;
     let (tau_ref, z_ref) = johnson_tau1_max();

@@ -5,7 +5,7 @@
 
 use anyhow::Result;
 use rayon::prelude::*;
-use thirdbody::stress::{SectionKind, StressField, StressRequest};
+use thirdbody::stress::{SectionId, SectionKind, StressField, StressRequest};
 use thirdbody::{
     Body, Case, ComplianceLaw, Elastic, GridSpec, Integration, Layer, Loading, Parallelism, Slider,
     Solution, SolverParams, Units,
@@ -660,7 +660,7 @@ fn fig9(r: Resolution, files: &mut FigureFiles) -> Result<FigureReport> {
         let (_, f) = stress
             .sections
             .iter()
-            .find(|(n, _)| n.name == "surface")
+            .find(|(n, _)| n.id == SectionId::Surface)
             .ok_or_else(|| anyhow::anyhow!("no surface section"))?;
         series.push(sigma_x_row(f, format!("delta = {d}"), false));
         let s = &stress.summary;
@@ -706,7 +706,7 @@ fn fig10(r: Resolution, files: &mut FigureFiles) -> Result<FigureReport> {
         let (_, f) = stress
             .sections
             .iter()
-            .find(|(n, _)| n.name == "xz")
+            .find(|(n, _)| n.id == SectionId::Xz)
             .ok_or_else(|| anyhow::anyhow!("no XZ section"))?;
         let tau1 = f.tau1();
         xz_map(
@@ -844,7 +844,7 @@ fn fig12(r: Resolution, files: &mut FigureFiles) -> Result<FigureReport> {
             for (named, f) in &stress.sections {
                 series.push(sigma_x_row(
                     f,
-                    format!("{}, {model}", named.name.replace('_', " ")),
+                    format!("{}, {model}", named.name().replace('_', " ")),
                     dashed,
                 ));
             }

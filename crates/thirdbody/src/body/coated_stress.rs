@@ -412,7 +412,7 @@ mod tests {
                         eb[q]
                     );
                 }
-                // sigma_xx jumps, as design.md §2 predicts from the strains.
+                // sigma_xx jumps, as docs/architecture.md (numerics) predicts from the strains.
                 let predicted = (et[0] + et[1] * s.poisson)
                     * (s.young / (1.0 - s.poisson * s.poisson))
                     + bottom[2] * (s.poisson / (1.0 - s.poisson));

@@ -1,4 +1,4 @@
-//! The contact solver (design.md §2): finds the contact area, the pressure p >= 0
+//! The contact solver (docs/architecture.md (numerics)): finds the contact area, the pressure p >= 0
 //! and the approach D such that `w_body(p) + w_layer(p) + f - D = 0` where p > 0,
 //! the gap is >= 0 where p = 0, and `sum(p) h^2 = Q` (paper eq. 3-4 and system 6).
 //!

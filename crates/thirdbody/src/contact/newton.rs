@@ -1,6 +1,6 @@
 //! Semi-smooth Newton (primal–dual active set; Hintermüller, Ito & Kunisch, SIAM J.
 //! Optim. 13, 2002) for the layered contact, whose operator `K + J_layer` is not
-//! symmetric because the layer's creep is causal along x (design.md §2). The
+//! symmetric because the layer's creep is causal along x (docs/architecture.md (numerics)). The
 //! complementarity conditions `p >= 0, g >= 0, p g = 0` are written as
 //! `min(p, c g) = 0` with `c` the inverse of a cell's own compliance; each Newton
 //! step fixes the contact set `A = {p - c g > 0}`, sets `p = 0` off it and solves the

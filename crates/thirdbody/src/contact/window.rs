@@ -3,7 +3,7 @@
 //! 4.22), a Winkler bed of compliance C0 (`a = (4 R C0 Q / pi)^(1/4)`), and the
 //! creep-dominated rigid-base limit, where the pressure is `p ~ V T x / (C0 R)` on a
 //! half disc ahead of the initial contact of radius `r = (3 Q C0 R / (2 V T))^(1/3)`
-//! (design.md §1a). After a solve the window is enlarged if the contact reaches its
+//! (docs/architecture.md (readings of the paper)). After a solve the window is enlarged if the contact reaches its
 //! edge, and refitted once if the contact fills too little of it.
 
 use crate::case::Case;

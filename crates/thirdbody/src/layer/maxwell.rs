@@ -1,6 +1,6 @@
 //! The nonlinear Maxwell layer of the paper: a spring bed (paper eq. 2,
 //! `dw3/dt = C[p] (p/T + dp/dt)`) integrated along the material path in the
-//! steady sliding frame (design.md §1). Material enters the window at its largest x
+//! steady sliding frame (docs/architecture.md (conventions)). Material enters the window at its largest x
 //! and moves in -x, so the displacement of cell i of a row is
 //!
 //! * `exact`:  `w3_i = G(p_i) + (h / (V T)) (sum_{j upstream} C[p_j] p_j + C[p_i] p_i / 2)`,

@@ -1,4 +1,4 @@
-//! Subsurface stresses under a computed surface pressure (design.md §2): for each
+//! Subsurface stresses under a computed surface pressure (docs/architecture.md (numerics)): for each
 //! depth z, each stress component is the discrete convolution of the pressure with
 //! the stresses per unit pressure on one cell (the "stress kernel" of the body),
 //! computed by DC-FFT. The homogeneous body uses Love's closed-form stresses under a
@@ -35,7 +35,9 @@ pub use kernels::{
     love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice,
     StressKernels, COMPONENTS,
 };
-pub use request::{NamedSection, SectionKind, StressRequest, StressResults, StressSummary};
+pub use request::{
+    NamedSection, SectionId, SectionKind, StressRequest, StressResults, StressSummary,
+};
 
 pub use crate::body::coated_stress::Side;
 use crate::case::Body;

@@ -81,14 +81,51 @@ impl Default for StressRequest {
     }
 }
 
-/// A section with the name its outputs carry (`xz`, `surface`,
-/// `interface_coating`, `interface_substrate`, `block`, `plane_1`, ...).
+/// Which section of a request a computed field is: its identity, from which its
+/// output name follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SectionId {
+    /// The XZ plane at the request's y.
+    Xz,
+    /// The surface z = 0.
+    Surface,
+    /// One side of the coating–substrate interface.
+    Interface(Side),
+    /// The 3-D block.
+    Block,
+    /// The request's k-th extra plane (from 1).
+    Plane(usize),
+}
+
+impl SectionId {
+    /// The name its outputs carry: `xz`, `surface`, `interface_coating`,
+    /// `interface_substrate`, `block`, `plane_1`, ...
+    pub fn name(self) -> String {
+        match self {
+            SectionId::Xz => "xz".into(),
+            SectionId::Surface => "surface".into(),
+            SectionId::Interface(Side::Coating) => "interface_coating".into(),
+            SectionId::Interface(Side::Substrate) => "interface_substrate".into(),
+            SectionId::Block => "block".into(),
+            SectionId::Plane(k) => format!("plane_{k}"),
+        }
+    }
+}
+
+/// A section of a request, with its identity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NamedSection {
-    /// Output name.
-    pub name: String,
+    /// Which section it is.
+    pub id: SectionId,
     /// What to compute.
     pub section: Section,
+}
+
+impl NamedSection {
+    /// The name its outputs carry (see [`SectionId::name`]).
+    pub fn name(&self) -> String {
+        self.id.name()
+    }
 }
 
 /// Scalar stress results (magnitudes in the case's stress unit; `None` where the
@@ -234,38 +271,33 @@ impl StressRequest {
             None => self.depths(contact_half_length(grid, pressure)?),
         };
         let mut out = Vec::new();
-        let mut push = |name: &str, section: Section| {
-            out.push(NamedSection {
-                name: name.to_string(),
-                section,
-            })
-        };
+        let mut push = |id: SectionId, section: Section| out.push(NamedSection { id, section });
         for kind in self.kinds(body) {
             match kind {
                 SectionKind::Xz => push(
-                    "xz",
+                    SectionId::Xz,
                     Section::XzPlane {
                         y: self.y,
                         depths: depths.clone(),
                     },
                 ),
-                SectionKind::Surface => push("surface", Section::Plane { z: 0.0 }),
+                SectionKind::Surface => push(SectionId::Surface, Section::Plane { z: 0.0 }),
                 SectionKind::Interface => {
                     push(
-                        "interface_coating",
+                        SectionId::Interface(Side::Coating),
                         Section::Interface {
                             side: Side::Coating,
                         },
                     );
                     push(
-                        "interface_substrate",
+                        SectionId::Interface(Side::Substrate),
                         Section::Interface {
                             side: Side::Substrate,
                         },
                     );
                 }
                 SectionKind::Block => push(
-                    "block",
+                    SectionId::Block,
                     Section::Block {
                         depths: depths.clone(),
                     },
@@ -273,7 +305,7 @@ impl StressRequest {
             }
         }
         for (k, &z) in self.planes.iter().enumerate() {
-            push(&format!("plane_{}", k + 1), Section::Plane { z });
+            push(SectionId::Plane(k + 1), Section::Plane { z });
         }
         Ok(out)
     }
@@ -328,8 +360,8 @@ pub fn summarise(sections: &[(NamedSection, StressField)]) -> StressSummary {
             })
     };
     for (named, field) in sections {
-        match named.name.as_str() {
-            "xz" => {
+        match named.id {
+            SectionId::Xz => {
                 let tau1 = field.tau1();
                 if let Some((n, &t)) = tau1.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)) {
                     let nx = field.xs.len() * field.ys.len();
@@ -338,15 +370,15 @@ pub fn summarise(sections: &[(NamedSection, StressField)]) -> StressSummary {
                     s.tau1_max_z = Some(field.zs[n / nx]);
                 }
             }
-            "surface" => {
+            SectionId::Surface => {
                 let (lo, hi) = sigma_x_extremes(field);
                 s.sigma_x_min = Some(lo);
                 s.sigma_x_max = Some(hi);
             }
-            "interface_coating" => {
+            SectionId::Interface(Side::Coating) => {
                 s.interface_sigma_x_max_coating = Some(sigma_x_extremes(field).1)
             }
-            "interface_substrate" => {
+            SectionId::Interface(Side::Substrate) => {
                 s.interface_sigma_x_max_substrate = Some(sigma_x_extremes(field).1)
             }
             _ => {}

@@ -1,5 +1,5 @@
 //! Subsurface stresses on sections, by discrete convolution of the surface pressure
-//! with the stress kernels of one depth at a time (design.md §2):
+//! with the stress kernels of one depth at a time (docs/architecture.md (numerics)):
 //! `sigma_c(x_i, y, z) = sum_{k,l} K_c(x_i - x_k, y - y_l, z) p_{k,l}`, exact for
 //! pressure uniform over each cell.
 //!

@@ -1,5 +1,5 @@
 //! Semi-analytic reference for a paraboloid slider on a Maxwell layer over a RIGID
-//! base (design.md §1 with `w_body = 0`). It shares no code with the solver: only
+//! base (docs/architecture.md (conventions) with `w_body = 0`). It shares no code with the solver: only
 //! the compliance law `C[p]` is taken as given (a closure), everything else is
 //! derived here.
 //!
