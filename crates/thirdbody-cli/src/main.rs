@@ -139,6 +139,20 @@ fn read_case(path: &Path) -> Result<(CaseFile, String)> {
     Ok((file, text))
 }
 
+/// The height-map file of a case (`slider.file`, as written, and where it is read
+/// from) when it is a bare file name: `solve` copies it beside `case.toml`, so that
+/// `thirdbody stress` can rebuild the case from the output folder alone.
+fn height_map_file(case_text: &str, case_path: &Path) -> Option<(String, PathBuf)> {
+    let table: toml::Table = case_text.parse().ok()?;
+    let name = table.get("slider")?.get("file")?.as_str()?;
+    let bare = Path::new(name).file_name()? == std::ffi::OsStr::new(name);
+    let reserved = outputs::is_output_name(name);
+    (bare && !reserved).then(|| {
+        let base = case_path.parent().unwrap_or(Path::new("."));
+        (name.to_string(), base.join(name))
+    })
+}
+
 fn solve(args: &SolveArgs) -> Result<()> {
     let (
         CaseFile {
@@ -177,10 +191,12 @@ fn solve(args: &SolveArgs) -> Result<()> {
         .transpose()?;
     let summary =
         thirdbody_cli::summary::summary_json(&case, &solution, solve_seconds, stress.as_ref())?;
+    let height_map = height_map_file(&case_text, &args.case);
     outputs::write_all(
         &args.out,
         &outputs::SolveOutputs {
             case_text: &case_text,
+            height_map: height_map.as_ref().map(|(n, p)| (n.as_str(), p.as_path())),
             case: &case,
             solution: &solution,
             summary: &summary,

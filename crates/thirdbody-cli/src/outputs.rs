@@ -96,6 +96,9 @@ fn labels(units: Units) -> Labels {
 pub struct SolveOutputs<'a> {
     /// The case file's text, saved as `case.toml`.
     pub case_text: &'a str,
+    /// The slider's height-map file (its name in the case, its path), copied
+    /// beside `case.toml`.
+    pub height_map: Option<(&'a str, &'a Path)>,
     /// The case.
     pub case: &'a Case,
     /// Its solution.
@@ -106,6 +109,25 @@ pub struct SolveOutputs<'a> {
     pub stress: Option<&'a StressResults>,
     /// Data formats to write.
     pub formats: Formats,
+}
+
+/// Whether `name` is one of the files a solve writes (a height map of that name is
+/// not copied beside them).
+pub fn is_output_name(name: &str) -> bool {
+    name == "case.toml"
+        || name == "summary.json"
+        || name.starts_with("pressure.")
+        || name.starts_with("stress_")
+        || name.ends_with(".png")
+        || name.ends_with(".vti")
+        || [
+            "compliance",
+            "body_displacement",
+            "gap",
+            "layer_displacement",
+        ]
+        .iter()
+        .any(|f| name.starts_with(&format!("{f}.")))
 }
 
 /// Stages `summary.json` (pretty-printed).
@@ -125,6 +147,12 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
     let mut out = Staging::new(dir)?;
     write_summary(&mut out, o.summary)?;
     out.write("case.toml", |path| Ok(std::fs::write(path, o.case_text)?))?;
+    if let Some((name, source)) = o.height_map {
+        out.write(name, |path| {
+            std::fs::copy(source, path)?;
+            Ok(())
+        })?;
+    }
     let mut fields: Vec<(&str, &[f64])> = vec![
         ("pressure", p),
         ("body_displacement", &solution.body_displacement),

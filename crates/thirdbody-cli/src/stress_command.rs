@@ -1,9 +1,12 @@
 //! `thirdbody stress DIR`: subsurface stresses for a case already solved into DIR by
-//! `thirdbody solve`, from the files that solve left there: the case (`case.toml`),
-//! the window (`summary.json`) and the pressure (`pressure.npy`, or `pressure.csv`).
-//! The request is the case's `[stress]` section, or that of `--request FILE`, or the
-//! defaults. The stress files are staged and renamed into DIR, and `summary.json`
-//! is replaced (atomically) by one with the new `stress` object.
+//! `thirdbody solve`. The problem is rebuilt from the folder's `case.toml` (a height
+//! map is read from DIR, where `solve` copied it) and solved again, so the stresses
+//! are computed on the case's own body and window; the pressure the folder holds
+//! (`pressure.npy`, or `pressure.csv`) must be that solution's, or the folder does not
+//! belong to its case and nothing is written. The request is the case's `[stress]`
+//! section, or that of `--request FILE`, or the defaults. The stress files are
+//! staged and renamed into DIR, and `summary.json` is replaced (atomically) by one
+//! with the new `stress` object.
 
 use std::path::{Path, PathBuf};
 
@@ -12,7 +15,8 @@ use clap::Args;
 use ndarray::Array2;
 use serde_json::Value;
 use thirdbody::case_file::parse_case_file;
-use thirdbody::{Grid, HeightMap};
+use thirdbody::{Grid, KernelCache};
+use thirdbody_cli::heightmap;
 
 use crate::outputs::{self, Formats};
 use crate::staging::Staging;
@@ -33,6 +37,10 @@ pub struct StressArgs {
     #[arg(long)]
     quiet: bool,
 }
+
+/// How closely the folder's pressure must match the case's solution, relative to the
+/// maximum pressure (a solve is deterministic; this allows for a CSV's rounding).
+const PRESSURE_AGREEMENT: f64 = 1e-9;
 
 fn bad(message: String) -> anyhow::Error {
     BadInput(message).into()
@@ -83,28 +91,6 @@ fn case_with_request(case_text: &str, request: Option<&Path>) -> Result<String> 
     Ok(toml::to_string(&case)?)
 }
 
-/// The window of the solve, from `summary.json`.
-fn grid_of(summary: &Value) -> Result<Grid> {
-    let number = |key: &str| {
-        summary[key]
-            .as_f64()
-            .ok_or_else(|| bad(format!("summary.json has no number {key}")))
-    };
-    let count = |key: &str| {
-        summary[key]
-            .as_u64()
-            .map(|n| n as usize)
-            .ok_or_else(|| bad(format!("summary.json has no count {key}")))
-    };
-    Ok(Grid {
-        nx: count("nx")?,
-        ny: count("ny")?,
-        cell: number("cell_size")?,
-        x0: number("window_x_min")?,
-        y0: number("window_y_min")?,
-    })
-}
-
 /// The pressure, row-major with rows along y, from `pressure.npy` or `pressure.csv`.
 fn read_pressure(dir: &Path, grid: &Grid) -> Result<Vec<f64>> {
     let npy = dir.join("pressure.npy");
@@ -114,7 +100,7 @@ fn read_pressure(dir: &Path, grid: &Grid) -> Result<Vec<f64>> {
             .map_err(|e| bad(format!("cannot read {}: {e}", npy.display())))?;
         if a.dim() != (grid.ny, grid.nx) {
             return Err(bad(format!(
-                "{} has shape {:?}; summary.json says ({}, {})",
+                "{} has shape {:?}; its case.toml solves to ({}, {})",
                 npy.display(),
                 a.dim(),
                 grid.ny,
@@ -137,7 +123,7 @@ fn read_pressure(dir: &Path, grid: &Grid) -> Result<Vec<f64>> {
             })?;
         if p.len() != grid.len() {
             return Err(bad(format!(
-                "{} has {} cells; summary.json says {}",
+                "{} has {} cells; its case.toml solves to {}",
                 csv.display(),
                 p.len(),
                 grid.len()
@@ -162,15 +148,8 @@ pub fn run(args: &StressArgs) -> Result<()> {
     }
     let case_text = read_text(&dir.join("case.toml"), "the solved case")?;
     let text = case_with_request(&case_text, args.request.as_deref())?;
-    // Stresses do not depend on the slider's shape: a height-map slider is read as
-    // a flat map, so its file need not be where the original case had it.
-    let file = parse_case_file(&text, &mut |_, cell_size| {
-        Ok(HeightMap {
-            nx: 2,
-            ny: 2,
-            cell_size,
-            heights: vec![0.0; 4],
-        })
+    let file = parse_case_file(&text, &mut |map, cell_size| {
+        heightmap::load(dir, map, cell_size)
     })?;
     let request = file
         .stress
@@ -178,9 +157,27 @@ pub fn run(args: &StressArgs) -> Result<()> {
     let summary_path = dir.join("summary.json");
     let mut summary: Value = serde_json::from_str(&read_text(&summary_path, "the summary")?)
         .map_err(|e| bad(format!("{}: {e}", summary_path.display())))?;
-    let grid = grid_of(&summary)?;
-    let pressure = read_pressure(dir, &grid)?;
-    let results = request.compute(&file.case.body, &grid, &pressure)?;
+    let solution = thirdbody::solve_with(
+        &file.case,
+        &file.solver,
+        &mut KernelCache::new(),
+        &mut |_| {},
+    )?;
+    let pressure = read_pressure(dir, &solution.grid)?;
+    let scale = solution.pressure.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = pressure
+        .iter()
+        .zip(&solution.pressure)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    if !(worst <= PRESSURE_AGREEMENT * scale) {
+        return Err(bad(format!(
+            "the pressure in {} is not the solution of its case.toml (they differ by {:.3e} \
+             of the maximum pressure): solve the case again into the folder",
+            dir.display(),
+            worst / scale
+        )));
+    }
+    let results = solution.stress_results(&request)?;
 
     let mut out = Staging::new(dir)?;
     stress_outputs::write_stress(

@@ -344,3 +344,71 @@ fn bad_stress_requests_are_refused_and_write_nothing() {
     std::fs::create_dir(&empty).unwrap();
     assert_stress_refused(&empty, &[], &["case.toml", "thirdbody solve"]);
 }
+
+#[test]
+fn the_stress_command_rebuilds_a_height_map_case_from_the_folder() {
+    // A paraboloid written as a height map (nodes on a 0.002 lattice): `solve` copies
+    // the map beside case.toml, so the folder alone rebuilds the case, wherever the
+    // original map was.
+    let (n, h) = (101, 0.002);
+    let mut csv = String::new();
+    for j in 0..n {
+        let y = (j as f64 - (n - 1) as f64 / 2.0) * h;
+        let row: Vec<String> = (0..n)
+            .map(|i| {
+                let x = (i as f64 - (n - 1) as f64 / 2.0) * h;
+                format!("{}", (x * x + y * y) / 2.0)
+            })
+            .collect();
+        csv.push_str(&row.join(","));
+        csv.push('\n');
+    }
+    let case = LAYERED.replace(
+        "shape = \"sphere\"\nradius = 1.0",
+        "shape = \"height_map\"\nfile = \"ball.csv\"\ncell_size = 0.002",
+    );
+    let direct = solve(&format!("{case}\n[stress]\n"), &[("ball.csv", &csv)], &[]);
+    assert_eq!(direct.code(), Some(0), "{}", direct.stderr());
+    let run = solve(&case, &[("ball.csv", &csv)], &[]);
+    assert_eq!(run.code(), Some(0), "{}", run.stderr());
+    assert!(
+        run.out_dir.join("ball.csv").exists(),
+        "the map is not copied"
+    );
+    std::fs::remove_file(run.root.path().join("ball.csv")).unwrap();
+    let out = thirdbody(&["stress".as_ref(), run.out_dir.as_os_str()]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        read4(&run.out_dir.join("stress_xz.npy")),
+        read4(&direct.out_dir.join("stress_xz.npy"))
+    );
+}
+
+#[test]
+fn a_folder_whose_pressure_is_not_its_cases_solution_is_refused() {
+    // The problem is rebuilt from case.toml; a pressure from another case (here the
+    // same case at twice the load) does not belong to it, and nothing is written.
+    let run = solve(LAYERED, &[], &[]);
+    assert_eq!(run.code(), Some(0), "{}", run.stderr());
+    let other = solve(
+        &LAYERED.replace("normal_load = 5e-6", "normal_load = 1e-5"),
+        &[],
+        &[],
+    );
+    assert_eq!(other.code(), Some(0), "{}", other.stderr());
+    std::fs::copy(
+        other.out_dir.join("pressure.npy"),
+        run.out_dir.join("pressure.npy"),
+    )
+    .unwrap();
+    assert_stress_refused(
+        &run.out_dir,
+        &[],
+        &["pressure", "not the solution of its case.toml"],
+    );
+}
