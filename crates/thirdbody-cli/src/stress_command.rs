@@ -169,7 +169,8 @@ pub fn run(args: &StressArgs) -> Result<()> {
         .iter()
         .zip(&solution.pressure)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    if !(worst <= PRESSURE_AGREEMENT * scale) {
+    let agrees = worst <= PRESSURE_AGREEMENT * scale;
+    if !agrees {
         return Err(bad(format!(
             "the pressure in {} is not the solution of its case.toml (they differ by {:.3e} \
              of the maximum pressure): solve the case again into the folder",
