@@ -37,6 +37,7 @@ pub mod body;
 pub mod case;
 pub mod case_file;
 pub mod contact;
+#[doc(hidden)]
 pub mod convolution;
 pub mod error;
 pub mod grid;
