@@ -24,6 +24,16 @@ use crate::kernel_cache::KernelCache;
 use crate::problem::ContactProblem;
 use crate::solution::{Method, Solution, SolveInfo};
 
+/// The smallest residual tolerance accepted: the relative complementarity residual
+/// of a converged solve sits at the rounding level of its sums, about 1e-15 to
+/// 1e-14 (measured on the bundled examples), so a smaller one cannot be reached.
+pub const MIN_TOLERANCE: f64 = 1e-14;
+/// Iterations over which the residual must fall by [`STAGNATION_FACTOR`], or the
+/// solve is stopped as stagnating.
+const STAGNATION_WINDOW: usize = 50;
+/// See [`STAGNATION_WINDOW`].
+const STAGNATION_FACTOR: f64 = 0.5;
+
 /// Stopping criteria and resources of a solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverParams {
@@ -51,11 +61,15 @@ impl Default for SolverParams {
 impl SolverParams {
     /// Checks the parameters; errors name the `[solver]` field.
     pub fn validate(&self) -> Result<()> {
-        if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
+        if !(self.tolerance.is_finite() && self.tolerance >= MIN_TOLERANCE && self.tolerance < 1.0)
+        {
             return Err(Error::invalid(
                 "solver.tolerance",
                 self.tolerance,
-                "0 < tolerance < 1",
+                &format!(
+                    "{MIN_TOLERANCE:e} <= tolerance < 1 (a relative residual below \
+                     {MIN_TOLERANCE:e} is under double precision's rounding)"
+                ),
             ));
         }
         if self.max_iterations == 0 {
@@ -148,6 +162,40 @@ impl<'a> Monitor<'a> {
         residual <= self.tolerance
     }
 
+    /// Whether the residual has stopped falling: its best over the last
+    /// [`STAGNATION_WINDOW`] iterations is not below [`STAGNATION_FACTOR`] times its
+    /// best before them. A converging CG or Newton iteration gains far more than
+    /// that; a stagnating one would otherwise run to `max_iterations`.
+    pub(crate) fn stagnated(&self) -> bool {
+        let n = self.history.len();
+        if n <= STAGNATION_WINDOW {
+            return false;
+        }
+        let best = |h: &[f64]| h.iter().copied().fold(f64::INFINITY, f64::min);
+        let (before, recent) = self.history.split_at(n - STAGNATION_WINDOW);
+        let progressing = best(recent) < STAGNATION_FACTOR * best(before);
+        !progressing
+    }
+
+    /// The message of a stagnated solve, with the model's own diagnosis if any.
+    pub(crate) fn stagnation_hint(&self, diagnosis: Option<String>) -> String {
+        let n = self.history.len();
+        let from = self.history[n - 1 - STAGNATION_WINDOW];
+        let to = self.last_residual();
+        let what = format!(
+            "the residual stopped falling (from {from:.3e} to {to:.3e} over the last \
+             {STAGNATION_WINDOW} iterations), so more iterations would not help"
+        );
+        match diagnosis {
+            Some(d) => format!("{what}; {d}"),
+            None => format!(
+                "{what}: the discrete problem is too ill-conditioned at these parameters \
+                 (e.g. moduli or compliances many orders of magnitude apart); check the \
+                 case's scales or use a coarser tolerance"
+            ),
+        }
+    }
+
     /// The last residual recorded (infinite before any).
     pub(crate) fn last_residual(&self) -> f64 {
         self.history.last().copied().unwrap_or(f64::INFINITY)
@@ -213,6 +261,15 @@ pub fn solve_with(
     for attempt in 1..=params.max_windows.max(1) {
         observer(Progress::Window { attempt, grid });
         let mut problem = case.assemble(&grid, kernels, params.parallelism)?;
+        if fixed && window::lowest_point_on_edge(&grid, &problem.shape) {
+            // The contact holds the slider's lowest point (where it first touches):
+            // on the window's edge, the contact reaches it whatever the solve does.
+            let [wx, wy] = grid.half_widths();
+            return Err(Error::ContactAtWindowEdge {
+                half_width_x: wx,
+                half_width_y: wy,
+            });
+        }
         let mut solution = solve_problem(&mut problem, warm.as_ref(), params, observer)?;
         solution.info.windows = attempt;
         let touches = grid.touches_edge(&solution.pressure);
@@ -338,4 +395,35 @@ fn finish(
             history: report.history,
         },
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn monitor_after(residuals: &[f64], observer: &mut dyn FnMut(Progress)) -> bool {
+        let params = SolverParams::default();
+        let mut m = Monitor::new(&params, observer);
+        for (k, &r) in residuals.iter().enumerate() {
+            m.converged(k + 1, r);
+        }
+        m.stagnated()
+    }
+
+    #[test]
+    fn a_creeping_residual_is_stagnation_and_a_falling_one_is_not() {
+        let mut seen = 0;
+        // -0.1% per iteration (the issue's runaway Newton solve): stagnated.
+        let creeping: Vec<f64> = (0..60).map(|k| 0.4 * 0.999f64.powi(k)).collect();
+        assert!(monitor_after(&creeping, &mut |_| seen += 1));
+        assert_eq!(seen, 60, "every iteration is reported");
+        // Slow but steady CG-like progress (a factor 10 per 60 iterations) is not.
+        let slow: Vec<f64> = (0..200).map(|k| 10f64.powf(-k as f64 / 60.0)).collect();
+        assert!(!monitor_after(&slow, &mut |_| {}));
+        // Too few iterations to judge.
+        assert!(!monitor_after(&creeping[..40], &mut |_| {}));
+        // An oscillating residual that keeps a best value is stagnation.
+        let oscillating: Vec<f64> = (0..80).map(|k| 1e-3 * (1.0 + (k % 2) as f64)).collect();
+        assert!(monitor_after(&oscillating, &mut |_| {}));
+    }
 }

@@ -119,6 +119,10 @@ pub(crate) fn semismooth_newton(
         if monitor.converged(iteration, residual) {
             return Ok(monitor.report(iteration, linear_iterations, approach));
         }
+        if monitor.stagnated() {
+            let hint = monitor.stagnation_hint(layer.stall_diagnosis(p));
+            return Err(monitor.failure(iteration, residual, hint));
+        }
         last_residual = residual;
         // A folding row relation is a property of the discrete model, not of the
         // iteration: stop early and say so rather than iterate to the limit.

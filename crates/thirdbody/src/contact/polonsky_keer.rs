@@ -72,6 +72,10 @@ pub(crate) fn polonsky_keer(
             since_refresh = 0;
             continue;
         }
+        if monitor.stagnated() {
+            let hint = monitor.stagnation_hint(None);
+            return Err(monitor.failure(iteration, residual, hint));
+        }
         in_contact
             .iter_mut()
             .zip(p.iter())

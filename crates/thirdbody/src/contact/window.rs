@@ -130,6 +130,18 @@ pub(crate) fn next_window(grid: &Grid, p: &[f64], touches: bool) -> Option<Grid>
     }
 }
 
+/// Whether the lowest cell of the slider's height `f` (the first cell to touch)
+/// lies on the window's edge, ties included.
+pub(crate) fn lowest_point_on_edge(grid: &Grid, f: &[f64]) -> bool {
+    let lowest = f.iter().copied().fold(f64::INFINITY, f64::min);
+    let mut edge = vec![0.0; f.len()];
+    for (e, &v) in edge.iter_mut().zip(f) {
+        *e = if v == lowest { 1.0 } else { 0.0 };
+    }
+    // Only the lowest cells are marked: they touch the edge iff one is on it.
+    grid.touches_edge(&edge)
+}
+
 /// Rejects a fixed window whose cells are too coarse for the contact.
 pub(crate) fn check_resolution(solution: &Solution) -> Result<()> {
     let g = &solution.grid;

@@ -31,7 +31,9 @@ pub fn principal_stresses(s: [f64; 6]) -> [f64; 3] {
     let s1 = mean + 2.0 * p * phi.cos();
     let s3 = mean + 2.0 * p * (phi + 2.0 * PI / 3.0).cos();
     let s2 = 3.0 * mean - s1 - s3;
-    [s1, s2.clamp(s3, s1), s3]
+    // Rounding can put s2 a hair outside [s3, s1]; max/min (unlike clamp) do not
+    // panic on a non-finite tensor, whose NaN then shows in the results.
+    [s1, s2.max(s3).min(s1), s3]
 }
 
 /// Maximum shear stress `(s1 - s3) / 2`.

@@ -266,6 +266,15 @@ impl StressRequest {
         pressure: &[f64],
     ) -> Result<Vec<NamedSection>> {
         self.validate(body)?;
+        let [y_lo, y_hi] = [grid.y0, grid.y0 + grid.ny as f64 * grid.cell];
+        let wants_xz = self.kinds(body).contains(&SectionKind::Xz);
+        if wants_xz && !(y_lo..=y_hi).contains(&self.y) {
+            return Err(Error::invalid(
+                "stress.y",
+                self.y,
+                &format!("a y inside the solved window, {y_lo:.4e} <= y <= {y_hi:.4e}"),
+            ));
+        }
         let depths = match self.max_depth {
             Some(_) => self.depths(0.0),
             None => self.depths(contact_half_length(grid, pressure)?),

@@ -1,0 +1,94 @@
+//! Hostile and extreme input reaching the library (issue 14): each ends at once with
+//! an error naming the key or the cause, never a panic, a hang or a non-finite result.
+
+use thirdbody::stress::{derived::principal_stresses, SectionKind, StressRequest};
+use thirdbody::{
+    solve, Body, Case, Elastic, Error, GridSpec, Loading, Slider, SolverParams, Units,
+};
+
+fn hertz(cells: usize, half_width: Option<[f64; 2]>, centre: Option<[f64; 2]>) -> Case {
+    Case {
+        slider: Slider::Sphere { radius: 1.0 },
+        body: Body::Homogeneous(Elastic {
+            young: 1.0,
+            poisson: 0.3,
+        }),
+        layer: None,
+        loading: Loading {
+            normal_load: 5e-6,
+            velocity: None,
+        },
+        grid: GridSpec {
+            cells: [cells, cells],
+            half_width,
+            centre,
+        },
+        units: Units::Dimensionless,
+    }
+}
+
+#[test]
+fn a_tolerance_below_double_precision_is_refused() {
+    let params = SolverParams {
+        tolerance: 1e-300,
+        ..SolverParams::default()
+    };
+    let e = solve(&hertz(32, None, None), &params).unwrap_err();
+    assert!(e.is_input(), "{e}");
+    assert!(e.to_string().contains("solver.tolerance"), "{e}");
+    // The floor itself is accepted.
+    let params = SolverParams {
+        tolerance: thirdbody::contact::MIN_TOLERANCE,
+        ..SolverParams::default()
+    };
+    assert!(params.validate().is_ok());
+}
+
+#[test]
+fn a_fixed_window_away_from_the_contact_is_the_window_error_at_once() {
+    // The issue's case: the contact (Hertz radius 0.017 at the origin) lies wholly
+    // outside a window of half width 0.06 centred at x = 1.
+    let case = hertz(32, Some([0.06, 0.06]), Some([1.0, 0.0]));
+    let e = solve(&case, &SolverParams::default()).unwrap_err();
+    assert!(
+        matches!(e, Error::ContactAtWindowEdge { .. }),
+        "expected the window error, got {e}"
+    );
+    // A window that holds the contact still solves.
+    let inside = hertz(32, Some([0.06, 0.06]), Some([0.0, 0.0]));
+    assert!(solve(&inside, &SolverParams::default()).is_ok());
+}
+
+#[test]
+fn principal_stresses_of_a_non_finite_tensor_do_not_panic() {
+    for s in [
+        [f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [f64::INFINITY, 1.0, -1.0, 0.5, 0.0, 0.0],
+        [1e300, -1e300, 1e300, 1e300, 1e300, 1e300],
+    ] {
+        let p = principal_stresses(s);
+        assert_eq!(p.len(), 3);
+    }
+    // A finite tensor still gives its eigenvalues (2, 0, 0). The trigonometric
+    // solution loses half the digits at a repeated eigenvalue (acos near 1): about
+    // 1e-8 of the stress scale here.
+    let p = principal_stresses([1.0, 1.0, 0.0, 1.0, 0.0, 0.0]);
+    let expected = [2.0, 0.0, 0.0];
+    for (got, want) in p.iter().zip(expected) {
+        assert!((got - want).abs() < 2e-8, "{p:?} vs {expected:?}");
+    }
+}
+
+#[test]
+fn an_xz_plane_outside_the_window_is_refused() {
+    let solution = solve(&hertz(32, None, None), &SolverParams::default()).unwrap();
+    for y in [1e3, 1e154, -1e300] {
+        let request = StressRequest {
+            y,
+            sections: Some(vec![SectionKind::Xz]),
+            ..StressRequest::default()
+        };
+        let e = solution.stress_results(&request).unwrap_err();
+        assert!(e.is_input() && e.to_string().contains("stress.y"), "{e}");
+    }
+}
