@@ -16,7 +16,6 @@ mod outputs;
 mod progress;
 mod report;
 mod reproduce;
-mod staging;
 mod stress_command;
 mod stress_outputs;
 

@@ -6,7 +6,7 @@
 //! (`x,y,pressure`, one line per cell), the surface fields as VTK image data
 //! (`surface.vti`), the stresses asked for (see [`crate::stress_outputs`]) and the
 //! plots. `--format` chooses among NPY, CSV and VTK. All are staged and renamed into
-//! place together (see [`crate::staging`]).
+//! place together (see [`thirdbody_cli::atomic`]).
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -18,8 +18,8 @@ use serde_json::Value;
 use thirdbody::stress::StressResults;
 use thirdbody::{Case, Grid, Solution, Units};
 
-use crate::staging::Staging;
 use crate::stress_outputs;
+use thirdbody_cli::atomic::Staging;
 use thirdbody_cli::plot::{self, Series};
 use thirdbody_cli::vtk;
 

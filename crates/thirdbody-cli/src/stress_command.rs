@@ -15,8 +15,8 @@ use thirdbody::case_file::parse_case_file;
 use thirdbody::{Grid, HeightMap};
 
 use crate::outputs::{self, Formats};
-use crate::staging::Staging;
 use crate::{report, stress_outputs, BadInput};
+use thirdbody_cli::atomic::Staging;
 
 /// Arguments of `thirdbody stress`.
 #[derive(Args)]

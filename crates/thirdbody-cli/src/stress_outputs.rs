@@ -21,7 +21,7 @@ use thirdbody_cli::plot::{self, Series};
 use thirdbody_cli::vtk;
 
 use crate::outputs::Formats;
-use crate::staging::Staging;
+use thirdbody_cli::atomic::Staging;
 
 /// Names of the eleven stored fields, in storage order.
 pub const FIELD_NAMES: [&str; 11] = [

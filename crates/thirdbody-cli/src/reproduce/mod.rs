@@ -28,9 +28,9 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use crate::staging::Staging;
 use crate::BadInput;
 use solutions::Solutions;
+use thirdbody_cli::atomic::Staging;
 
 /// A figure of the paper: takes its cases' solutions from the run's [`Solutions`],
 /// stages its files and returns what the report says of it.

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use serde_json::Value;
 
-use super::folder::{temp_path, Record, Status, SweepFile};
+use super::folder::{Record, Status, SweepFile};
 use crate::plot::{line_plot, Series};
 
 /// The paper's symbol of a case key, with its unit for SI cases (section 4's primed
@@ -127,9 +127,9 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
         });
     let log_x = lo > 0.0 && (axis.log_spaced || hi / lo >= 100.0);
     let path = dir.join(format!("mu_vs_{}.png", axis.name));
-    let temp = temp_path(&path);
-    let drawn = line_plot(
-        &temp,
+    // line_plot writes atomically; its temporary is one the folder recognises.
+    line_plot(
+        &path,
         &series,
         &format!(
             "Friction coefficient against {}",
@@ -138,12 +138,8 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
         &axis_label(&axis.name, si),
         "mu",
         log_x,
-    )
-    .and_then(|()| Ok(std::fs::rename(&temp, &path)?));
-    if drawn.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    drawn.map(|()| Some(path))
+    )?;
+    Ok(Some(path))
 }
 
 #[cfg(test)]
