@@ -16,11 +16,12 @@ use anyhow::{Context, Result};
 use ndarray::Array2;
 use serde_json::Value;
 use thirdbody::stress::StressResults;
-use thirdbody::{Case, Grid, Solution, Units};
+use thirdbody::{Case, Grid, Solution};
 
 use crate::stress_outputs;
 use thirdbody_cli::atomic::Staging;
 use thirdbody_cli::plot::{self, Series};
+use thirdbody_cli::units;
 use thirdbody_cli::vtk;
 
 /// Which data formats to write (`--format npy,csv,vtk`; all by default). The JSON
@@ -82,31 +83,6 @@ pub fn summary_json(
         map.insert("stress".into(), stress_outputs::summary_json(results)?);
     }
     Ok(summary)
-}
-
-/// Axis and colour-bar labels in the case's units.
-struct Labels {
-    x: &'static str,
-    y: &'static str,
-    pressure: &'static str,
-    compliance: &'static str,
-}
-
-fn labels(units: Units) -> Labels {
-    match units {
-        Units::Dimensionless => Labels {
-            x: "x'",
-            y: "y'",
-            pressure: "p'",
-            compliance: "C'",
-        },
-        Units::Si => Labels {
-            x: "x (m)",
-            y: "y (m)",
-            pressure: "p (Pa)",
-            compliance: "C (m/Pa)",
-        },
-    }
 }
 
 /// Everything one solve writes.
@@ -175,7 +151,7 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
         stress_outputs::write_stress(&mut out, results, case.units, o.formats)?;
     }
 
-    let l = labels(case.units);
+    let l = units::labels(case.units);
     out.write("pressure_map.png", |path| {
         plot::field_map(
             path,

@@ -71,28 +71,6 @@ pub fn summary_json(results: &StressResults) -> Result<Value> {
     Ok(Value::Object(map))
 }
 
-/// Labels in the case's units.
-struct Labels {
-    x: &'static str,
-    z: &'static str,
-    unit: &'static str,
-}
-
-fn labels(units: Units) -> Labels {
-    match units {
-        Units::Dimensionless => Labels {
-            x: "x'",
-            z: "z' (depth)",
-            unit: "/ E2",
-        },
-        Units::Si => Labels {
-            x: "x (m)",
-            z: "z (m, depth)",
-            unit: "(Pa)",
-        },
-    }
-}
-
 /// Stages every stress file into `out`.
 pub fn write_stress(
     out: &mut Staging,
@@ -100,7 +78,7 @@ pub fn write_stress(
     units: Units,
     formats: Formats,
 ) -> Result<()> {
-    let l = labels(units);
+    let l = thirdbody_cli::units::labels(units);
     for (named, f) in &results.sections {
         let name = &named.name;
         let fields = all_fields(f);
@@ -133,8 +111,8 @@ pub fn write_stress(
                         &fields[field],
                         &format!("{what} in the plane y = {}", short(y)),
                         l.x,
-                        l.z,
-                        &format!("{what} {}", l.unit),
+                        l.depth,
+                        &format!("{what} {}", l.stress_scale),
                         10,
                     )
                 })?;
@@ -178,7 +156,7 @@ pub fn write_stress(
                 &series,
                 &format!("sigma_x along x on the cell row y = {}", short(row_y)),
                 l.x,
-                &format!("sigma_x {}", l.unit),
+                &format!("sigma_x {}", l.stress_scale),
                 false,
             )
         })?;

@@ -6,7 +6,7 @@
 
 use anyhow::Result;
 use serde_json::{json, Map, Value};
-use thirdbody::{Case, Solution, Units};
+use thirdbody::{Case, Solution};
 
 /// The summary of a solve as written to `summary.json`: the library's
 /// [`thirdbody::Summary`] plus the solver report, the wall time of kernel set-up
@@ -21,10 +21,7 @@ pub fn summary_json(case: &Case, solution: &Solution, solve_seconds: f64) -> Res
     let info = &solution.info;
     let extra: Map<String, Value> = json!({
         "solve_seconds": solve_seconds,
-        "units": match case.units {
-            Units::Dimensionless => "dimensionless",
-            Units::Si => "si",
-        },
+        "units": crate::units::labels(case.units).name,
         "method": info.method,
         "linear_iterations": info.linear_iterations,
         "windows": info.windows,

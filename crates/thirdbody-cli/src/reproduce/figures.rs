@@ -9,7 +9,7 @@ use thirdbody_cli::plot::{self, Series};
 
 use super::catalogue::{self, parameter_line};
 use super::render::{
-    line_figure, max_pressure, mu_curves, number, pressure_row, push_curve_ends, report,
+    line_figure, max_pressure, mu_curves, number, pressure_row, push_curve_ends, report, L,
 };
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, Resolution};
@@ -49,7 +49,7 @@ pub fn fig2(_: &mut Solutions, _: Resolution, files: &mut FigureFiles) -> Result
         "fig02_compliance",
         &series,
         "Layer compliance, eq. 11",
-        ["p'", "C / C0"],
+        [L.pressure, "C / C0"],
         false,
     )?;
     let at_p0 = catalogue::sigmoid(1.0, 1.0, 0.005).law_at(0.005).compliance;
@@ -79,9 +79,9 @@ pub fn fig3(
             g,
             p,
             "Contact pressure (Fig. 3a)",
-            "x'",
-            "y'",
-            "p'",
+            L.x,
+            L.y,
+            L.pressure,
             Some(p),
         )
     })?;
@@ -91,9 +91,9 @@ pub fn fig3(
             g,
             &c,
             "Layer compliance (Fig. 3b)",
-            "x'",
-            "y'",
-            "C'",
+            L.x,
+            L.y,
+            L.compliance,
             Some(p),
         )
     })?;
@@ -101,7 +101,7 @@ pub fn fig3(
         .flat_map(|j| (0..g.nx).map(move |i| (i, j)))
         .map(|(i, j)| vec![g.x(i), g.y(j), p[g.index(i, j)], c[g.index(i, j)]])
         .collect();
-    files.table_csv("fig03.csv", &["x'", "y'", "p'", "C'"], &rows)?;
+    files.table_csv("fig03.csv", &[L.x, L.y, L.pressure, L.compliance], &rows)?;
     let sum = s.summary();
     let c_min = c.iter().copied().fold(f64::INFINITY, f64::min);
     let c0 = case.layer.as_ref().map_or(f64::NAN, |l| l.compliance);
@@ -148,7 +148,7 @@ fn pressure_curves(
             None,
         ));
     }
-    line_figure(files, stem, &series, title, ["x'", "p'"], false)
+    line_figure(files, stem, &series, title, [L.x, L.pressure], false)
 }
 
 pub fn fig4(
@@ -233,7 +233,7 @@ pub fn fig6(
         "fig06_mu_vs_compliance",
         &series,
         "Friction against layer compliance (Fig. 6)",
-        ["C'", "mu"],
+        [study.key, "mu"],
         true,
     )?;
     push_curve_ends(&mut rep, &series, study.key);
@@ -257,7 +257,7 @@ pub fn fig7(
         "fig07_mu_vs_thickness",
         &series,
         "Friction against coating thickness (Fig. 7)",
-        ["h1'", "mu"],
+        [study.key, "mu"],
         true,
     )?;
     push_curve_ends(&mut rep, &series, study.key);
@@ -284,7 +284,7 @@ pub fn fig8(
         "fig08a_mu_vs_velocity",
         &series,
         "Friction against velocity (Fig. 8a)",
-        ["V'", "mu"],
+        [study.key, "mu"],
         true,
     )?;
     // (b): linear minus nonlinear where both were solved.
@@ -313,7 +313,7 @@ pub fn fig8(
         "fig08b_mu_difference",
         &differences,
         "Linear minus nonlinear mu (Fig. 8b)",
-        ["V'", "mu_linear - mu"],
+        [study.key, "mu_linear - mu"],
         true,
     )?;
     push_curve_ends(&mut rep, &series, study.key);

@@ -7,11 +7,22 @@ use thirdbody::stress::StressField;
 use thirdbody::Solution;
 use thirdbody_cli::plot::{self, Series};
 
+use thirdbody::Units;
+use thirdbody_cli::units::{self, Labels};
+
 use super::catalogue::Study;
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, KeyNumber};
 use crate::outputs::row_nearest_y0;
 use crate::stress_outputs::nearest;
+
+/// The paper's dimensionless labels of plot axes, colour bars and CSV columns.
+pub const L: &Labels = units::labels(Units::Dimensionless);
+
+/// `sigma_x / E2` etc.
+pub fn stress_label(name: &str) -> String {
+    format!("{name} {}", L.stress_scale)
+}
 
 /// A report entry without numbers yet.
 pub fn report(id: &str, title: &str, parameters: String) -> FigureReport {
@@ -96,9 +107,9 @@ pub fn xz_map(
             &f.zs,
             values,
             title,
-            "x'",
-            "z' (depth)",
-            &format!("{name} / E2"),
+            L.x,
+            L.depth,
+            &stress_label(name),
             10,
         )
     })?;
@@ -106,7 +117,7 @@ pub fn xz_map(
         .flat_map(|k| (0..f.xs.len()).map(move |i| (i, k)))
         .map(|(i, k)| vec![f.xs[i], f.zs[k], values[f.index(i, 0, k)]])
         .collect();
-    files.table_csv(&format!("{stem}.csv"), &["x'", "z'", name], &rows)
+    files.table_csv(&format!("{stem}.csv"), &[L.x, "z'", name], &rows)
 }
 
 /// A parameter study: `mu` of each curve's case at each value; points whose solve

@@ -8,7 +8,9 @@ use thirdbody::stress::{SectionKind, StressRequest, StressResults};
 use thirdbody::{Case, Solution};
 
 use super::catalogue::{self, parameter_line};
-use super::render::{line_figure, max_pressure, number, report, sigma_x_row, xz_map};
+use super::render::{
+    line_figure, max_pressure, number, report, sigma_x_row, stress_label, xz_map, L,
+};
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, Resolution};
 
@@ -78,7 +80,7 @@ pub fn fig9(
         "fig09_sigma_x_surface",
         &series,
         "sigma_x on the surface, y = 0 (Fig. 9)",
-        ["x'", "sigma_x / E2"],
+        [L.x, &stress_label("sigma_x")],
         false,
     )?;
     rep.notes.push(
@@ -276,7 +278,7 @@ pub fn fig12(
             &format!("fig12{panel}_sigma_x"),
             &series,
             &format!("sigma_x, h1' = {h} (Fig. 12{panel})"),
-            ["x'", "sigma_x / E2"],
+            [L.x, &stress_label("sigma_x")],
             false,
         )?;
     }
