@@ -16,6 +16,7 @@ mod outputs;
 mod progress;
 mod report;
 mod reproduce;
+mod section;
 mod stress_command;
 mod stress_outputs;
 

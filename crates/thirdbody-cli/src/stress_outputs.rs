@@ -21,6 +21,7 @@ use thirdbody_cli::plot::{self, Series};
 use thirdbody_cli::vtk;
 
 use crate::outputs::Formats;
+use crate::section::{self, SectionId};
 use thirdbody_cli::atomic::Staging;
 
 /// Names of the eleven stored fields, in storage order.
@@ -52,12 +53,11 @@ pub fn summary_json(results: &StressResults) -> Result<Value> {
     let Value::Object(mut map) = serde_json::to_value(&results.summary)? else {
         anyhow::bail!("the stress summary did not serialise to an object");
     };
-    let sections: Vec<Value> = results
-        .sections
-        .iter()
-        .map(|(named, f)| {
+    let sections: Vec<Value> = section::sections(results)?
+        .into_iter()
+        .map(|(id, f)| {
             let mut s = json!({
-                "name": named.name,
+                "name": id.name(),
                 "points": [f.xs.len(), f.ys.len(), f.zs.len()],
                 "depths": f.zs,
             });
@@ -79,8 +79,9 @@ pub fn write_stress(
     formats: Formats,
 ) -> Result<()> {
     let l = thirdbody_cli::units::labels(units);
-    for (named, f) in &results.sections {
-        let name = &named.name;
+    let sections = section::sections(results)?;
+    for &(id, f) in &sections {
+        let name = id.name();
         let fields = all_fields(f);
         if formats.npy {
             out.write(&format!("stress_{name}.npy"), |p| write_npy(p, f, &fields))?;
@@ -88,7 +89,7 @@ pub fn write_stress(
         if formats.csv {
             out.write(&format!("stress_{name}.csv"), |p| write_csv(p, f, &fields))?;
         }
-        if formats.vtk && name == "block" {
+        if formats.vtk && id == SectionId::Block {
             out.write("stress_block.vti", |p| {
                 let spacing = f.xs.get(1).map_or(1.0, |x1| x1 - f.xs[0]);
                 let lattice = vtk::Lattice::from_axes([&f.xs, &f.ys, &f.zs], spacing)?;
@@ -100,7 +101,7 @@ pub fn write_stress(
                 vtk::write_image_data(p, &lattice, &named)
             })?;
         }
-        if name == "xz" && f.xs.len() >= 2 && f.zs.len() >= 2 {
+        if id == SectionId::Xz && f.xs.len() >= 2 && f.zs.len() >= 2 {
             let y = f.ys[0];
             for (field, what) in [(9, "tau1"), (0, "sigma_x")] {
                 out.write(&format!("stress_xz_{what}.png"), |p| {
@@ -121,22 +122,12 @@ pub fn write_stress(
     }
     // sigma_x along x through y = 0 (or the XZ section's y) on the surface and the
     // interface (paper Figs. 9 and 12).
-    let y_line = results
-        .sections
-        .iter()
-        .find(|(n, _)| n.name == "xz")
-        .map_or(0.0, |(_, f)| f.ys[0]);
+    let y_line = section::find(results, SectionId::Xz).map_or(0.0, |f| f.ys[0]);
     let mut row_y = y_line;
-    let series: Vec<Series> = results
-        .sections
+    let series: Vec<Series> = sections
         .iter()
-        .filter_map(|(named, f)| {
-            let label = match named.name.as_str() {
-                "surface" => "surface",
-                "interface_coating" => "interface, coating side",
-                "interface_substrate" => "interface, substrate side",
-                _ => return None,
-            };
+        .filter_map(|&(id, f)| {
+            let label = id.sigma_x_row_label()?;
             let j = nearest(&f.ys, y_line)?;
             row_y = f.ys[j];
             Some(Series {
@@ -145,7 +136,7 @@ pub fn write_stress(
                 y: (0..f.xs.len())
                     .map(|i| f.components[0][f.index(i, j, 0)])
                     .collect(),
-                dashed: named.name == "interface_substrate",
+                dashed: id == SectionId::InterfaceSubstrate,
             })
         })
         .collect();

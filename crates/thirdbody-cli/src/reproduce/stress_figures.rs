@@ -13,6 +13,7 @@ use super::render::{
 };
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, Resolution};
+use crate::section::{self, SectionId};
 
 /// Published values of Fig. 10's caption (printed negative) and the text's increase.
 const PAPER_TAU1: [f64; 2] = [0.000982, 0.00132];
@@ -57,10 +58,7 @@ pub fn fig9(
     let mut series = Vec::new();
     let results = stresses(solutions, &cases, &[SectionKind::Surface])?;
     for (d, stress) in deltas.iter().zip(&results) {
-        let (_, f) = stress
-            .sections
-            .iter()
-            .find(|(n, _)| n.name == "surface")
+        let f = section::find(stress, SectionId::Surface)
             .ok_or_else(|| anyhow::anyhow!("no surface section"))?;
         series.push(sigma_x_row(f, format!("delta = {d}"), false));
         let s = &stress.summary;
@@ -109,11 +107,8 @@ pub fn fig10(
         .zip(&results)
         .zip([("a", PAPER_TAU1[0]), ("b", PAPER_TAU1[1])])
     {
-        let (_, f) = stress
-            .sections
-            .iter()
-            .find(|(n, _)| n.name == "xz")
-            .ok_or_else(|| anyhow::anyhow!("no XZ section"))?;
+        let f =
+            section::find(stress, SectionId::Xz).ok_or_else(|| anyhow::anyhow!("no XZ section"))?;
         let tau1 = f.tau1();
         xz_map(
             files,
@@ -249,10 +244,11 @@ pub fn fig12(
         for (stress, (model, dashed)) in
             results.iter().zip([("nonlinear", false), ("linear", true)])
         {
-            for (named, f) in &stress.sections {
+            // The CSV's series names: "surface, nonlinear", "interface coating, linear", ...
+            for (id, f) in section::sections(stress)? {
                 series.push(sigma_x_row(
                     f,
-                    format!("{}, {model}", named.name.replace('_', " ")),
+                    format!("{}, {model}", id.name().replace('_', " ")),
                     dashed,
                 ));
             }
