@@ -16,7 +16,7 @@ mod outputs;
 mod progress;
 mod report;
 mod reproduce;
-mod staging;
+mod section;
 mod stress_command;
 mod stress_outputs;
 

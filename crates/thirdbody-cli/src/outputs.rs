@@ -6,7 +6,7 @@
 //! (`x,y,pressure`, one line per cell), the surface fields as VTK image data
 //! (`surface.vti`), the stresses asked for (see [`crate::stress_outputs`]) and the
 //! plots. `--format` chooses among NPY, CSV and VTK. All are staged and renamed into
-//! place together (see [`crate::staging`]).
+//! place together (see [`thirdbody_cli::atomic`]).
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -16,11 +16,12 @@ use anyhow::{Context, Result};
 use ndarray::Array2;
 use serde_json::Value;
 use thirdbody::stress::StressResults;
-use thirdbody::{Case, Grid, Solution, Units};
+use thirdbody::{Case, Grid, Solution};
 
-use crate::staging::Staging;
 use crate::stress_outputs;
+use thirdbody_cli::atomic::Staging;
 use thirdbody_cli::plot::{self, Series};
+use thirdbody_cli::units;
 use thirdbody_cli::vtk;
 
 /// Which data formats to write (`--format npy,csv,vtk`; all by default). The JSON
@@ -65,31 +66,6 @@ pub fn parse_formats(text: &str) -> std::result::Result<Formats, String> {
         }
     }
     Ok(f)
-}
-
-/// Axis and colour-bar labels in the case's units.
-struct Labels {
-    x: &'static str,
-    y: &'static str,
-    pressure: &'static str,
-    compliance: &'static str,
-}
-
-fn labels(units: Units) -> Labels {
-    match units {
-        Units::Dimensionless => Labels {
-            x: "x'",
-            y: "y'",
-            pressure: "p'",
-            compliance: "C'",
-        },
-        Units::Si => Labels {
-            x: "x (m)",
-            y: "y (m)",
-            pressure: "p (Pa)",
-            compliance: "C (m/Pa)",
-        },
-    }
 }
 
 /// Everything one solve writes.
@@ -186,7 +162,7 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
         stress_outputs::write_stress(&mut out, results, case.units, o.formats)?;
     }
 
-    let l = labels(case.units);
+    let l = units::labels(case.units);
     out.write("pressure_map.png", |path| {
         plot::field_map(
             path,

@@ -2,17 +2,21 @@
 
 use std::fmt::Write;
 
-use thirdbody::{Case, Solution, Units};
+use thirdbody::{Case, Solution};
 
 /// A few lines: how the solve went, then D, the maximum pressure, the contact's
 /// area and extent, and the friction.
 pub fn human_summary(case: &Case, solution: &Solution, solve_seconds: f64) -> String {
     let s = solution.summary();
     let info = &solution.info;
-    let (len, area, force, stress, moment) = match case.units {
-        Units::Dimensionless => ("", "", "", "", ""),
-        Units::Si => (" m", " m^2", " N", " Pa", " N m"),
-    };
+    let l = thirdbody_cli::units::labels(case.units);
+    let (len, area, force, stress, moment) = (
+        l.length_unit,
+        l.area_unit,
+        l.force_unit,
+        l.stress_unit,
+        l.moment_unit,
+    );
     let method = serde_json::to_value(info.method)
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))

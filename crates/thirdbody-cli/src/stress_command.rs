@@ -19,8 +19,8 @@ use thirdbody::{Grid, KernelCache};
 use thirdbody_cli::heightmap;
 
 use crate::outputs::{self, Formats};
-use crate::staging::Staging;
 use crate::{report, stress_outputs, BadInput};
+use thirdbody_cli::atomic::Staging;
 
 /// Arguments of `thirdbody stress`.
 #[derive(Args)]

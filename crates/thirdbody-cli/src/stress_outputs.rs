@@ -16,14 +16,14 @@ use anyhow::{Context, Result};
 use ndarray::Array4;
 use serde_json::Value;
 use thirdbody::report::StressReport;
-use thirdbody::stress::{SectionId, Side};
-use thirdbody::stress::{StressField, StressResults};
+use thirdbody::stress::{Side, StressField, StressResults};
 use thirdbody::Units;
 use thirdbody_cli::plot::{self, Series};
 use thirdbody_cli::vtk;
 
 use crate::outputs::Formats;
-use crate::staging::Staging;
+use crate::section::{self, SectionId, SectionLabels};
+use thirdbody_cli::atomic::Staging;
 
 /// Names of the eleven stored fields, in storage order.
 pub const FIELD_NAMES: [&str; 11] = [
@@ -49,31 +49,9 @@ fn all_fields(f: &StressField) -> Vec<Vec<f64>> {
     out
 }
 
-/// The `stress` object of `summary.json` (see [`thirdbody::report::StressReport`]).
+/// The `stress` object of `summary.json`.
 pub fn summary_json(results: &StressResults) -> Result<Value> {
     Ok(serde_json::to_value(StressReport::of(results))?)
-}
-
-/// Labels in the case's units.
-struct Labels {
-    x: &'static str,
-    z: &'static str,
-    unit: &'static str,
-}
-
-fn labels(units: Units) -> Labels {
-    match units {
-        Units::Dimensionless => Labels {
-            x: "x'",
-            z: "z' (depth)",
-            unit: "/ E2",
-        },
-        Units::Si => Labels {
-            x: "x (m)",
-            z: "z (m, depth)",
-            unit: "(Pa)",
-        },
-    }
 }
 
 /// Stages every stress file into `out`.
@@ -83,9 +61,10 @@ pub fn write_stress(
     units: Units,
     formats: Formats,
 ) -> Result<()> {
-    let l = labels(units);
-    for (named, f) in &results.sections {
-        let name = named.name();
+    let l = thirdbody_cli::units::labels(units);
+    let sections = section::sections(results)?;
+    for &(id, f) in &sections {
+        let name = id.name();
         let fields = all_fields(f);
         if formats.npy {
             out.write(&format!("stress_{name}.npy"), |p| write_npy(p, f, &fields))?;
@@ -93,7 +72,7 @@ pub fn write_stress(
         if formats.csv {
             out.write(&format!("stress_{name}.csv"), |p| write_csv(p, f, &fields))?;
         }
-        if formats.vtk && named.id == SectionId::Block {
+        if formats.vtk && id == SectionId::Block {
             out.write("stress_block.vti", |p| {
                 let spacing = f.xs.get(1).map_or(1.0, |x1| x1 - f.xs[0]);
                 let lattice = vtk::Lattice::from_axes([&f.xs, &f.ys, &f.zs], spacing)?;
@@ -105,7 +84,7 @@ pub fn write_stress(
                 vtk::write_image_data(p, &lattice, &named)
             })?;
         }
-        if named.id == SectionId::Xz && f.xs.len() >= 2 && f.zs.len() >= 2 {
+        if id == SectionId::Xz && f.xs.len() >= 2 && f.zs.len() >= 2 {
             let y = f.ys[0];
             for (field, what) in [(9, "tau1"), (0, "sigma_x")] {
                 out.write(&format!("stress_xz_{what}.png"), |p| {
@@ -116,8 +95,8 @@ pub fn write_stress(
                         &fields[field],
                         &format!("{what} in the plane y = {}", short(y)),
                         l.x,
-                        l.z,
-                        &format!("{what} {}", l.unit),
+                        l.depth,
+                        &format!("{what} {}", l.stress_scale),
                         10,
                     )
                 })?;
@@ -126,22 +105,12 @@ pub fn write_stress(
     }
     // sigma_x along x through y = 0 (or the XZ section's y) on the surface and the
     // interface (paper Figs. 9 and 12).
-    let y_line = results
-        .sections
-        .iter()
-        .find(|(n, _)| n.id == SectionId::Xz)
-        .map_or(0.0, |(_, f)| f.ys[0]);
+    let y_line = section::find(results, SectionId::Xz).map_or(0.0, |f| f.ys[0]);
     let mut row_y = y_line;
-    let series: Vec<Series> = results
-        .sections
+    let series: Vec<Series> = sections
         .iter()
-        .filter_map(|(named, f)| {
-            let label = match named.id {
-                SectionId::Surface => "surface",
-                SectionId::Interface(Side::Coating) => "interface, coating side",
-                SectionId::Interface(Side::Substrate) => "interface, substrate side",
-                _ => return None,
-            };
+        .filter_map(|&(id, f)| {
+            let label = id.sigma_x_row_label()?;
             let j = nearest(&f.ys, y_line)?;
             row_y = f.ys[j];
             Some(Series {
@@ -150,7 +119,7 @@ pub fn write_stress(
                 y: (0..f.xs.len())
                     .map(|i| f.components[0][f.index(i, j, 0)])
                     .collect(),
-                dashed: named.id == SectionId::Interface(Side::Substrate),
+                dashed: id == SectionId::Interface(Side::Substrate),
             })
         })
         .collect();
@@ -161,7 +130,7 @@ pub fn write_stress(
                 &series,
                 &format!("sigma_x along x on the cell row y = {}", short(row_y)),
                 l.x,
-                &format!("sigma_x {}", l.unit),
+                &format!("sigma_x {}", l.stress_scale),
                 false,
             )
         })?;

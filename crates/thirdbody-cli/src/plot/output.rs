@@ -1,8 +1,9 @@
 //! Writing a figure to disk: the embedded font, the choice of backend from the file
 //! extension (PNG raster or SVG vector) and the atomic write (render to a temporary file
-//! in the same folder, then rename; the temporary is removed on error).
+//! in the same folder, then rename; the temporary is removed on error; see
+//! [`crate::atomic`]).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::OnceLock;
 
 use anyhow::{anyhow, bail, Context, Result};
@@ -48,16 +49,6 @@ enum Format {
     Svg,
 }
 
-/// The temporary file next to `path`: `<stem>.tmp-<pid>.<ext>` (the extension is kept so
-/// the PNG encoder still recognises the format).
-fn temporary_path(path: &Path, ext: &str) -> Result<PathBuf> {
-    let stem = path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .ok_or_else(|| anyhow!("plot path {} has no usable file name", path.display()))?;
-    Ok(path.with_file_name(format!("{stem}.tmp-{}.{ext}", std::process::id())))
-}
-
 /// Renders `figure` to `path` (PNG or SVG by extension, case-insensitive) atomically.
 pub(crate) fn write_figure(path: &Path, figure: &impl Figure) -> Result<()> {
     let ext = path
@@ -73,16 +64,10 @@ pub(crate) fn write_figure(path: &Path, figure: &impl Figure) -> Result<()> {
         ),
     };
     register_embedded_font()?;
-    let tmp = temporary_path(path, ext.as_deref().unwrap_or_default())?;
-    let result = render(&tmp, format, figure).and_then(|()| {
-        std::fs::rename(&tmp, path)
-            .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
-    });
-    if result.is_err() {
-        // The backend may have written (part of) the file on drop; never leave it behind.
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.with_context(|| format!("writing plot {}", path.display()))
+    // The temporary keeps the extension, so the PNG encoder still recognises the format;
+    // the backend may have written (part of) it on drop, and it is removed on error.
+    crate::atomic::write_with(path, |tmp| render(tmp, format, figure))
+        .with_context(|| format!("writing plot {}", path.display()))
 }
 
 fn render(tmp: &Path, format: Format, figure: &impl Figure) -> Result<()> {

@@ -5,11 +5,19 @@
 //! and, where the paper prints numbers (Fig. 10's tau1 values and their 35% increase,
 //! the 12% and 16% pressure increases of Fig. 11's text), ours beside the paper's.
 //!
-//! The figures are in [`figures`]; this module runs them, stages every file (all or
-//! nothing, like `thirdbody solve`) and writes the report. Cases inside a figure are
-//! solved in parallel (rayon), each solve on one thread.
+//! The paper's cases are in [`catalogue`] (with the parameter lines generated from
+//! them), their solutions in [`solutions`] (each case solved once per run, though
+//! several figures use it), the figures in [`figures`] (Figs. 2-8) and
+//! [`stress_figures`] (Figs. 9-12) with the rendering they share in [`render`]; this
+//! module runs them, stages every file (all or nothing, like `thirdbody solve`) and
+//! writes the report. Cases inside a figure are solved in parallel (rayon), each
+//! solve on one thread.
 
+mod catalogue;
 mod figures;
+mod render;
+mod solutions;
+mod stress_figures;
 
 use std::fmt::Write as _;
 use std::fs::File;
@@ -20,8 +28,28 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use crate::staging::Staging;
 use crate::BadInput;
+use solutions::Solutions;
+use thirdbody_cli::atomic::Staging;
+
+/// A figure of the paper: takes its cases' solutions from the run's [`Solutions`],
+/// stages its files and returns what the report says of it.
+type Figure = fn(&mut Solutions, Resolution, &mut FigureFiles) -> Result<FigureReport>;
+
+/// Every figure, in the paper's order.
+const ALL: [Figure; 11] = [
+    figures::fig2,
+    figures::fig3,
+    figures::fig4,
+    figures::fig5,
+    figures::fig6,
+    figures::fig7,
+    figures::fig8,
+    stress_figures::fig9,
+    stress_figures::fig10,
+    stress_figures::fig11,
+    stress_figures::fig12,
+];
 
 /// Arguments of `thirdbody reproduce`.
 #[derive(Args)]
@@ -156,14 +184,15 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
     };
     let start = Instant::now();
     let mut staging = Staging::new(&args.out)?;
+    let mut solutions = Solutions::new(catalogue::every_case(resolution));
     let mut reports = Vec::new();
-    for figure in figures::ALL {
+    for figure in ALL {
         let t = Instant::now();
         let mut files = FigureFiles {
             staging: &mut staging,
             names: Vec::new(),
         };
-        let mut report = figure(resolution, &mut files)?;
+        let mut report = figure(&mut solutions, resolution, &mut files)?;
         report.files = files.names;
         if !args.quiet {
             eprintln!(

@@ -17,6 +17,9 @@ use super::run::{run, Event, RunOptions, Shard};
 use super::{merge, Sweep, SweepError};
 
 /// Arguments of `thirdbody sweep`.
+// The field comments are also `--help` text, where `[sweep]` names the case file's
+// section; rustdoc would read it as a link.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Debug, Args)]
 pub struct SweepArgs {
     /// The base case file (TOML, docs/case-file.md); an optional [sweep] section lists

@@ -4,8 +4,9 @@
 //!   value, the case ids in product order). A rerun or a merge checks that it matches,
 //!   so a folder is never mixed with another sweep's results.
 //! * `cases/<id>.json`: one record per finished case (status `ok` with the summary, or
-//!   `failed` with the error message). Records are written under a temporary name and
-//!   renamed, so a record is either complete or absent, whenever the run is killed.
+//!   `failed` with the error message). Records are written atomically
+//!   ([`crate::atomic`]), so a record is either complete or absent, whenever the run
+//!   is killed.
 //! * `lock`: the process id of the run that is writing the folder, removed when it
 //!   ends; a lock left by a killed run is taken over (on Linux a live holder is
 //!   detected through `/proc`).
@@ -19,6 +20,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
+
+use crate::atomic::{is_temporary, write_bytes};
 
 use super::values::KeyValue;
 use super::{Sweep, SweepError};
@@ -252,35 +255,7 @@ pub fn record_path(dir: &Path, id: &str) -> PathBuf {
 pub fn write_record(dir: &Path, record: &Record) -> Result<()> {
     let mut text = serde_json::to_string_pretty(record)?;
     text.push('\n');
-    write_atomic(&record_path(dir, &record.case), text.as_bytes())
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename,
-/// so that `path` is either the old file or the complete new one.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let temp = temp_path(path);
-    let result = (|| -> Result<()> {
-        let mut f = fs::File::create(&temp)?;
-        f.write_all(bytes)?;
-        f.flush()?;
-        fs::rename(&temp, path)?;
-        Ok(())
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&temp);
-    }
-    result.with_context(|| format!("cannot write {}", path.display()))
-}
-
-/// `.NAME.tmp-PID.EXT` beside `path` (the extension kept for writers that choose
-/// their format by it).
-pub fn temp_path(path: &Path) -> PathBuf {
-    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("file");
-    let name = match path.extension().and_then(|e| e.to_str()) {
-        Some(ext) => format!(".{stem}.tmp-{}.{ext}", std::process::id()),
-        None => format!(".{stem}.tmp-{}", std::process::id()),
-    };
-    path.with_file_name(name)
+    write_bytes(&record_path(dir, &record.case), text.as_bytes())
 }
 
 /// The output folder of a run, locked while the run writes it.
@@ -305,7 +280,7 @@ impl Folder {
         if !dir.join(SPEC_FILE).exists() {
             let mut text = serde_json::to_string_pretty(spec)?;
             text.push('\n');
-            write_atomic(&dir.join(SPEC_FILE), text.as_bytes())?;
+            write_bytes(&dir.join(SPEC_FILE), text.as_bytes())?;
         }
         Ok(folder)
     }
@@ -366,7 +341,7 @@ fn only_leftovers(dir: &Path) -> bool {
     entries.flatten().all(|e| {
         let name = e.file_name().to_string_lossy().into_owned();
         name == LOCK_FILE
-            || (name.starts_with('.') && name.contains(".tmp-"))
+            || is_temporary(&name)
             || (name == CASES_DIR && fs::read_dir(e.path()).is_ok_and(|mut d| d.next().is_none()))
     })
 }
@@ -422,7 +397,7 @@ fn remove_temporaries(dir: &Path) {
     for entry in entries.flatten() {
         let name = entry.file_name();
         let name = name.to_string_lossy();
-        if name.starts_with('.') && name.contains(".tmp-") {
+        if is_temporary(&name) {
             let _ = fs::remove_file(entry.path());
         }
     }
@@ -431,24 +406,6 @@ fn remove_temporaries(dir: &Path) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn atomic_writes_leave_no_temporary() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("results.csv");
-        write_atomic(&path, b"a,b\n").unwrap();
-        write_atomic(&path, b"a,b\n1,2\n").unwrap();
-        assert_eq!(fs::read_to_string(&path).unwrap(), "a,b\n1,2\n");
-        assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
-        let t = temp_path(&path);
-        assert!(t
-            .file_name()
-            .unwrap()
-            .to_str()
-            .unwrap()
-            .starts_with(".results.tmp-"));
-        assert_eq!(t.extension().unwrap(), "csv");
-    }
 
     #[test]
     fn a_lock_of_a_live_process_is_respected_and_a_stale_one_taken_over() {

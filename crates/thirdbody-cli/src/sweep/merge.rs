@@ -10,9 +10,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 
-use super::folder::{read_record, read_sweep_file, record_path, write_atomic, Folder, Record};
+use super::folder::{read_record, read_sweep_file, record_path, Folder, Record};
 use super::run::finish;
 use super::SweepError;
+use crate::atomic::write_bytes;
 
 /// What a merge did.
 #[derive(Debug, Clone, PartialEq)]
@@ -97,7 +98,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeReport> {
     // Copied byte for byte: a record is never re-serialised.
     for (record, from) in to_write {
         let bytes = std::fs::read(record_path(from, &record.case))?;
-        write_atomic(&record_path(folder.dir(), &record.case), &bytes)?;
+        write_bytes(&record_path(folder.dir(), &record.case), &bytes)?;
     }
     let (collected, results, plot) = finish(folder.dir(), &spec)?;
     Ok(MergeReport {

@@ -5,9 +5,9 @@
 //! (one row per case: the varied values, every summary key, the status) assembled from
 //! the records at the end of every run. A rerun skips the cases that have a record, so
 //! an interrupted sweep loses nothing; `--shard K/N` runs every N-th case and
-//! [`merge`] joins shard folders.
+//! [`merge`](merge()) joins shard folders.
 //!
-//! The engine ([`run`], [`merge`]) prints nothing: it reports progress to an observer
+//! The engine ([`run`](run()), [`merge`](merge())) prints nothing: it reports progress to an observer
 //! the caller passes. [`command`] is the `thirdbody sweep` / `thirdbody merge` front
 //! end (arguments, progress bar, printed summary).
 

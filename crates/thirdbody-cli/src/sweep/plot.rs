@@ -11,32 +11,15 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use serde_json::Value;
 
-use super::folder::{temp_path, Record, Status, SweepFile};
-use crate::plot::{line_plot, Series};
+use super::folder::{Record, Status, SweepFile};
+use thirdbody::Units;
 
-/// The paper's symbol of a case key, with its unit for SI cases (section 4's primed
-/// variables for dimensionless ones); `None` for keys without one.
-fn symbol(key: &str, si: bool) -> Option<&'static str> {
-    let (dimensionless, with_unit) = match key {
-        "loading.velocity" => ("V'", "V (m/s)"),
-        "loading.normal_load" => ("Q'", "Q (N)"),
-        "layer.compliance" => ("C'", "C0 (m/Pa)"),
-        "layer.p0" => ("p0'", "p0 (Pa)"),
-        "layer.delta" => ("delta", "delta"),
-        "layer.relaxation_time" => ("T'", "T (s)"),
-        "coating.thickness" => ("h1'", "h1 (m)"),
-        "coating.young" => ("E1'", "E1 (Pa)"),
-        "coating.poisson" => ("nu1", "nu1"),
-        "substrate.young" => ("E2'", "E2 (Pa)"),
-        "substrate.poisson" => ("nu2", "nu2"),
-        _ => return None,
-    };
-    Some(if si { with_unit } else { dimensionless })
-}
+use crate::plot::{line_plot, Series};
+use crate::units::{from_name, key_symbol};
 
 /// `symbol (key)`, or the key alone.
-fn axis_label(key: &str, si: bool) -> String {
-    match symbol(key, si) {
+fn axis_label(key: &str, units: Units) -> String {
+    match key_symbol(key, units) {
         Some(s) => format!("{s} ({key})"),
         None => key.to_string(),
     }
@@ -52,9 +35,12 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
         return Ok(None);
     };
     let axis = &file.axes[x_axis];
+    // SI labels if any solved case is in SI units.
     let si = records.iter().any(|r| {
-        matches!(&r.summary, Some(Value::Object(m)) if m.get("units").and_then(Value::as_str) == Some("si"))
+        matches!(&r.summary, Some(Value::Object(m))
+            if m.get("units").and_then(Value::as_str).and_then(from_name) == Some(Units::Si))
     });
+    let units = if si { Units::Si } else { Units::Dimensionless };
     let mut series: Vec<(Vec<usize>, Series)> = Vec::new();
     for r in records {
         let Some(entry) = file.cases.get(r.index).filter(|e| e.case == r.case) else {
@@ -89,7 +75,7 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
                         if ax.name == super::spec::VARIANT_AXIS {
                             value.clone()
                         } else {
-                            let name = symbol(&ax.name, si).unwrap_or(&ax.name);
+                            let name = key_symbol(&ax.name, units).unwrap_or(&ax.name);
                             format!("{name} = {value}")
                         }
                     })
@@ -127,23 +113,19 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
         });
     let log_x = lo > 0.0 && (axis.log_spaced || hi / lo >= 100.0);
     let path = dir.join(format!("mu_vs_{}.png", axis.name));
-    let temp = temp_path(&path);
-    let drawn = line_plot(
-        &temp,
+    // line_plot writes atomically; its temporary is one the folder recognises.
+    line_plot(
+        &path,
         &series,
         &format!(
             "Friction coefficient against {}",
-            symbol(&axis.name, si).unwrap_or(&axis.name)
+            key_symbol(&axis.name, units).unwrap_or(&axis.name)
         ),
-        &axis_label(&axis.name, si),
+        &axis_label(&axis.name, units),
         "mu",
         log_x,
-    )
-    .and_then(|()| Ok(std::fs::rename(&temp, &path)?));
-    if drawn.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    drawn.map(|()| Some(path))
+    )?;
+    Ok(Some(path))
 }
 
 #[cfg(test)]
@@ -153,18 +135,18 @@ mod tests {
     #[test]
     fn keys_are_labelled_with_the_papers_symbols() {
         assert_eq!(
-            axis_label("loading.velocity", false),
+            axis_label("loading.velocity", Units::Dimensionless),
             "V' (loading.velocity)"
         );
         assert_eq!(
-            axis_label("loading.velocity", true),
+            axis_label("loading.velocity", Units::Si),
             "V (m/s) (loading.velocity)"
         );
         assert_eq!(
-            axis_label("coating.thickness", false),
+            axis_label("coating.thickness", Units::Dimensionless),
             "h1' (coating.thickness)"
         );
-        assert_eq!(axis_label("grid.cells", false), "grid.cells");
-        assert_eq!(symbol("layer.p0", false), Some("p0'"));
+        assert_eq!(axis_label("grid.cells", Units::Dimensionless), "grid.cells");
+        assert_eq!(key_symbol("layer.p0", Units::Dimensionless), Some("p0'"));
     }
 }

@@ -15,7 +15,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use serde_json::Value;
 
-use super::folder::{read_record, write_atomic, Record, Status, SweepFile};
+use super::folder::{read_record, Record, Status, SweepFile};
+use crate::atomic::write_bytes;
 
 /// The results file's name.
 pub const RESULTS_FILE: &str = "results.csv";
@@ -58,7 +59,7 @@ pub fn collect(dir: &Path, file: &SweepFile) -> Collected {
 /// Writes `dir/results.csv` from `records` (in product order).
 pub fn write_results(dir: &Path, file: &SweepFile, records: &[Record]) -> Result<PathBuf> {
     let path = dir.join(RESULTS_FILE);
-    write_atomic(&path, &results_csv(file, records)?)?;
+    write_bytes(&path, &results_csv(file, records)?)?;
     Ok(path)
 }
 
