@@ -9,7 +9,7 @@
 //! non-symmetric) the semi-smooth Newton iteration with GMRES. Both stop on the relative complementarity
 //! residual `||min(p, c g)|| / ||p||` (c = inverse self-compliance of a cell), which
 //! is reported, and fail with the residual history when they do not converge. The
-//! window is chosen automatically unless the case fixes it ([`window`]): a solution
+//! window is chosen automatically unless the case fixes it (module `window`): a solution
 //! whose contact reaches the window's edge is never returned.
 
 mod newton;
