@@ -1,3 +1,4 @@
 //! Test-only helpers shared by the integration tests.
 
 pub mod rigid_base;
+pub mod rigid_base_viscoelastic;

@@ -169,7 +169,7 @@ fn trailing_edge(b: f64, l: f64, z: f64) -> f64 {
 }
 
 /// `z - (1 - e^-z)` without cancellation for small z.
-fn z_minus_one_minus_exp(z: f64) -> f64 {
+pub fn z_minus_one_minus_exp(z: f64) -> f64 {
     if z < 0.05 {
         // z^2/2 - z^3/6 + z^4/24 - ...: terms to z^9 leave < 1e-17 relative.
         let mut term = z * z / 2.0;
@@ -377,7 +377,7 @@ impl RigidBase {
 /// covered. Row pressures vary on the creep length only near the leading edge
 /// (the `exp(-(b - x) / L)` term); further back they are nearly polynomial.
 /// `f` may return a number or an array of numbers.
-fn panel_quadrature<T: Quadrand>(f: impl Fn(f64) -> T, a: f64, b: f64, panel: f64) -> T {
+pub fn panel_quadrature<T: Quadrand>(f: impl Fn(f64) -> T, a: f64, b: f64, panel: f64) -> T {
     let (nodes, weights) = gauss_legendre(16);
     let length = b - a;
     let first = panel.min(length / 4.0);
@@ -394,7 +394,7 @@ fn panel_quadrature<T: Quadrand>(f: impl Fn(f64) -> T, a: f64, b: f64, panel: f6
 }
 
 /// What [`panel_quadrature`] can sum.
-trait Quadrand: Copy {
+pub trait Quadrand: Copy {
     fn zero() -> Self;
     fn add_scaled(self, other: Self, weight: f64) -> Self;
 }
