@@ -58,6 +58,8 @@ fn every_figure_is_written_with_finite_data_and_a_report() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // The numbers are those recorded before the assembly stage (issue 10).
+    common::recorded::check_reproduce_data(&dir);
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())

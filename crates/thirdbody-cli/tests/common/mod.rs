@@ -2,6 +2,8 @@
 //! written into a fresh folder, and read what it wrote.
 #![allow(dead_code)]
 
+pub mod recorded;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
