@@ -92,3 +92,20 @@ fn an_xz_plane_outside_the_window_is_refused() {
         assert!(e.is_input() && e.to_string().contains("stress.y"), "{e}");
     }
 }
+
+#[test]
+fn numbers_that_overflow_stop_at_once_and_say_so() {
+    // R = 1e-300 with Q' ~ 5e-6: the Hertz contact would be 1e198 radii wide and the
+    // solver's products overflow; before, this ran 2000 iterations (or wrote null).
+    let mut case = hertz(32, None, None);
+    case.slider = Slider::Sphere { radius: 1e-300 };
+    match solve(&case, &SolverParams::default()).unwrap_err() {
+        Error::NoConvergence {
+            iterations, hint, ..
+        } => {
+            assert!(iterations <= 2, "{iterations} iterations");
+            assert!(hint.contains("not finite"), "{hint}");
+        }
+        e => panic!("unexpected error {e}"),
+    }
+}

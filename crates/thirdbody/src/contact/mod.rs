@@ -162,6 +162,22 @@ impl<'a> Monitor<'a> {
         residual <= self.tolerance
     }
 
+    /// Why the solve should stop short of the tolerance, if it should: a residual
+    /// that is not finite (at once), or one that has stopped falling
+    /// ([`Monitor::stagnated`]); `diagnosis` is the model's own explanation, if any.
+    pub(crate) fn stop_reason(&self, diagnosis: impl FnOnce() -> Option<String>) -> Option<String> {
+        if !self.last_residual().is_finite() {
+            return Some(
+                "the solver's numbers are not finite (they overflow or underflow): the \
+                 case's values are out of double precision's range together, or the \
+                 contact is not small against the slider; check slider.radius, the \
+                 moduli, loading.normal_load and the layer's compliance"
+                    .into(),
+            );
+        }
+        self.stagnated().then(|| self.stagnation_hint(diagnosis()))
+    }
+
     /// Whether the residual has stopped falling: its best over the last
     /// [`STAGNATION_WINDOW`] iterations is not below [`STAGNATION_FACTOR`] times its
     /// best before them. A converging CG or Newton iteration gains far more than

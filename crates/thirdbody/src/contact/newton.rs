@@ -119,8 +119,7 @@ pub(crate) fn semismooth_newton(
         if monitor.converged(iteration, residual) {
             return Ok(monitor.report(iteration, linear_iterations, approach));
         }
-        if monitor.stagnated() {
-            let hint = monitor.stagnation_hint(layer.stall_diagnosis(p));
+        if let Some(hint) = monitor.stop_reason(|| layer.stall_diagnosis(p)) {
             return Err(monitor.failure(iteration, residual, hint));
         }
         last_residual = residual;

@@ -72,8 +72,7 @@ pub(crate) fn polonsky_keer(
             since_refresh = 0;
             continue;
         }
-        if monitor.stagnated() {
-            let hint = monitor.stagnation_hint(None);
+        if let Some(hint) = monitor.stop_reason(|| None) {
             return Err(monitor.failure(iteration, residual, hint));
         }
         in_contact
