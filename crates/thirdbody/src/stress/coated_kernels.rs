@@ -24,14 +24,32 @@
 //!    k = 0 (both sides), carried by `k e^{-k lambda}`: Love's nu = 0 stresses give
 //!    `k l e^{-k l}` times `(c^2, s^2, c s)` with (a) added, times 1 in sigma_z and
 //!    times `i (c, s)` in the shears.
-//! 3. The remainder, O(k^2) at k -> 0 (a kernel tail ~ 1/r^4, so its periodic
-//!    images are negligible) and decaying at large k like `e^{-k lambda}` (the
-//!    reflection from the interface). It is summed on a periodic lattice of the
-//!    cell pitch: base wavenumbers `2 pi j / (M h)` plus their aliases `2 pi m / h`
-//!    until `e^{-k lambda}` is negligible, then one inverse 2-D FFT. Its four
-//!    wave-frame functions of |k| are tabulated once per depth on Chebyshev panels.
-//!    The cost per depth grows like `(h / lambda)^2` for coatings thinner than a
-//!    cell (the aliases resolve the sub-cell structure).
+//! 3. The remainder, O(k^2) at k -> 0 and decaying at large k like `e^{-k lambda}`
+//!    (the reflection from the interface). It is summed on a periodic lattice of
+//!    the cell pitch: base wavenumbers `2 pi j / (M h)` plus their aliases
+//!    `2 pi m / h` until `e^{-k lambda}` is negligible, then one inverse 2-D FFT. Its
+//!    four wave-frame functions of |k| are tabulated once per depth on Chebyshev
+//!    panels. The cost per depth grows like `(h / lambda)^2` for coatings thinner
+//!    than a cell (the aliases resolve the sub-cell structure).
+//!
+//! Known limitation (issue 9 part 1, open): the lattice sum is the remainder's
+//! kernel plus its periodic images, and the images are not negligible in general.
+//! The wave-frame functions are analytic in |k|, so in (kx, ky) the non-analytic
+//! terms left after the carriers are the odd powers `|k|^3, |k|^5, ...` of the
+//! normal stresses (with the angular factors `c^2, s^2, c s`; the even powers are
+//! polynomials in kx, ky) and `|k|^2, |k|^4, ...` of the shears (times `c, s`):
+//! real-space tails `r^-5` (a nearly uniform offset from the images) and `r^-4`
+//! (odd, cancelling at the loaded cell to leading order). For a stiff coating the
+//! Taylor series of the remainder in k converges only for `k < 1 / l`, with the
+//! coating's membrane length `l ~ 2 (E1/E2) h1` (ratios of successive coefficients
+//! 7, 62 and 202 h1 for E1/E2 = 3, 30, 100, nu = 0.3), so the kernel reaches out to
+//! ~l (falling like `r^-3` between h1 and l) before the `r^-5` tail starts; a thick
+//! coating's kernel has its own structure on the scale h1. Where l or h1 is not
+//! small against the box (`BOX_FACTOR` times the offsets' span) the coefficients
+//! depend on the window: measured in `tests/coated_stress_window.rs` and
+//! docs/validation.md. Enlarging the box converges only like `L^-3` to `L^-5`, far
+//! too slowly for l of hundreds of cells; the fix needs the long-range part computed
+//! without images.
 //!
 //! With E1 = E2 and nu1 = nu2 the remainder and the carrier vanish (to rounding), and
 //! the kernels are Love's. At the interface each side uses its own transfer and its
@@ -56,7 +74,8 @@ use crate::case::Elastic;
 const ALIAS_DECAY: f64 = 32.0;
 /// Periodic box of the remainder: at least this many times the span of the offsets.
 /// Measured on a coated Hertz case (E1/E2 = 3, h1 = a/2, 64 x 64): the stresses
-/// change by 1.7e-4 p0 from 2 to 8, 3e-5 from 3 to 8, 7e-6 from 4 to 8.
+/// change by 1.7e-4 p0 from 2 to 8, 3e-5 from 3 to 8, 7e-6 from 4 to 8. Not enough
+/// for stiff or thick coatings (see the module comment).
 const BOX_FACTOR: usize = 3;
 /// Chebyshev panel degree of the tabulated remainder.
 const PANEL_DEGREE: usize = 20;
