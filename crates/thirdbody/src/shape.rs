@@ -73,8 +73,30 @@ impl HeightMap {
         Ok(())
     }
 
-    /// Bilinear interpolation of the height and its x-slope at (x, y); `None` outside.
-    fn sample(&self, x: f64, y: f64) -> Option<(f64, f64)> {
+    /// The mean x-slope of the interpolated surface over `[x - width/2, x + width/2]`
+    /// on the line y (clamped to the map): the difference of the interpolated heights
+    /// at the ends over their distance; `None` outside the map.
+    ///
+    /// The friction sum `sum(p df/dx) h^2` takes, per cell, the slope of the slider
+    /// under that cell's pressure. Where the map's nodes fall on the cell centres (a
+    /// profilometer map at the solver's spacing) the one-sided slope of the bilinear
+    /// interpolant at a node biases mu by hm / (2R); the mean over the cell is the
+    /// exact slope of the interpolated surface, the same on either side of a node,
+    /// and exact for a paraboloid whose nodes sit on the cell centres or corners.
+    fn mean_x_slope(&self, x: f64, y: f64, width: f64) -> Option<f64> {
+        let [ex, _] = self.half_extent();
+        let lo = (x - 0.5 * width).max(-ex);
+        let hi = (x + 0.5 * width).min(ex);
+        if hi <= lo {
+            return None;
+        }
+        let f_lo = self.height(lo, y)?;
+        let f_hi = self.height(hi, y)?;
+        Some((f_hi - f_lo) / (hi - lo))
+    }
+
+    /// Bilinear interpolation of the height at (x, y); `None` outside.
+    fn height(&self, x: f64, y: f64) -> Option<f64> {
         let h = self.cell_size;
         let u = x / h + 0.5 * self.nx as f64 - 0.5;
         let v = y / h + 0.5 * self.ny as f64 - 0.5;
@@ -89,8 +111,7 @@ impl HeightMap {
         let at = |i: usize, j: usize| self.heights[j * self.nx + i];
         let (f00, f10, f01, f11) = (at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1));
         let f = (1.0 - t) * ((1.0 - s) * f00 + s * f10) + t * ((1.0 - s) * f01 + s * f11);
-        let dfdx = ((1.0 - t) * (f10 - f00) + t * (f11 - f01)) / h;
-        Some((f, dfdx))
+        Some(f)
     }
 }
 
@@ -156,9 +177,10 @@ impl Slider {
                         x * x / (2.0 * radius_x) + y * y / (2.0 * radius_y),
                         x / radius_x,
                     ),
-                    Slider::HeightMap(m) => match m.sample(x, y) {
-                        Some((fv, dv)) => (fv - min_height, dv),
-                        None => {
+                    Slider::HeightMap(m) => match (m.height(x, y), m.mean_x_slope(x, y, grid.cell))
+                    {
+                        (Some(fv), Some(dv)) => (fv - min_height, dv),
+                        _ => {
                             let [ex, ey] = m.half_extent();
                             let [wx, wy] = grid.half_widths();
                             let c = grid.centre();

@@ -114,8 +114,9 @@ fn solve(mut m: [[f64; 6]; 6], mut r: [f64; 6]) -> [f64; 6] {
         r.swap(c, p);
         for i in c + 1..6 {
             let f = m[i][c] / m[c][c];
-            for j in c..6 {
-                m[i][j] -= f * m[c][j];
+            let pivot = m[c];
+            for (a, b) in m[i][c..].iter_mut().zip(&pivot[c..]) {
+                *a -= f * b;
             }
             r[i] -= f * r[c];
         }

@@ -28,10 +28,15 @@ use crate::solution::{Method, Solution, SolveInfo};
 /// of a converged solve sits at the rounding level of its sums, about 1e-15 to
 /// 1e-14 (measured on the bundled examples), so a smaller one cannot be reached.
 pub const MIN_TOLERANCE: f64 = 1e-14;
-/// Iterations over which the residual must fall by [`STAGNATION_FACTOR`], or the
-/// solve is stopped as stagnating.
-const STAGNATION_WINDOW: usize = 50;
-/// See [`STAGNATION_WINDOW`].
+/// Newton steps over which the residual must fall by [`STAGNATION_FACTOR`], or the
+/// solve is stopped as stagnating (a converging Newton iteration needs tens of steps
+/// in all).
+pub(crate) const NEWTON_STAGNATION_WINDOW: usize = 50;
+/// The same for conjugate-gradient steps, which are cheap and whose complementarity
+/// residual can plateau for a few hundred steps while the contact set settles (a
+/// stiff coating, E1/E2 = 90 on h1 = 0.002: 382 steps, a plateau of ~200).
+pub(crate) const CG_STAGNATION_WINDOW: usize = 500;
+/// See [`NEWTON_STAGNATION_WINDOW`].
 const STAGNATION_FACTOR: f64 = 0.5;
 
 /// Stopping criteria and resources of a solve.
@@ -45,6 +50,11 @@ pub struct SolverParams {
     pub parallelism: Parallelism,
     /// Most windows the automatic window may try.
     pub max_windows: usize,
+    /// The algorithm to use; `None` (the default) picks conjugate gradients for a
+    /// symmetric problem and semi-smooth Newton otherwise. Newton can be forced on
+    /// any problem (a second method to compare with); conjugate gradients only on a
+    /// symmetric one.
+    pub method: Option<Method>,
 }
 
 impl Default for SolverParams {
@@ -54,6 +64,7 @@ impl Default for SolverParams {
             max_iterations: 2000,
             parallelism: Parallelism::Rayon,
             max_windows: 6,
+            method: None,
         }
     }
 }
@@ -74,6 +85,14 @@ impl SolverParams {
         }
         if self.max_iterations == 0 {
             return Err(Error::invalid("solver.max_iterations", 0, "at least 1"));
+        }
+        if self.method == Some(Method::DenseReference) {
+            return Err(Error::invalid(
+                "solver.method",
+                "dense_reference",
+                "conjugate gradients or semi-smooth Newton (the dense reference is \
+                 thirdbody::reference::solve_dense)",
+            ));
         }
         Ok(())
     }
@@ -139,14 +158,22 @@ pub(crate) fn relative_complementarity_residual(p: &[f64], g: &[f64], w: &[f64])
 /// when to stop: the one place every iterative solver stops the same way.
 pub(crate) struct Monitor<'a> {
     tolerance: f64,
+    stagnation_window: usize,
     observer: &'a mut dyn FnMut(Progress),
     history: Vec<f64>,
 }
 
 impl<'a> Monitor<'a> {
-    pub(crate) fn new(params: &SolverParams, observer: &'a mut dyn FnMut(Progress)) -> Self {
+    /// A monitor that calls a solve stagnated when `stagnation_window` iterations
+    /// gain less than [`STAGNATION_FACTOR`].
+    pub(crate) fn new(
+        params: &SolverParams,
+        stagnation_window: usize,
+        observer: &'a mut dyn FnMut(Progress),
+    ) -> Self {
         Monitor {
             tolerance: params.tolerance,
+            stagnation_window,
             observer,
             history: Vec::new(),
         }
@@ -179,28 +206,28 @@ impl<'a> Monitor<'a> {
     }
 
     /// Whether the residual has stopped falling: its best over the last
-    /// [`STAGNATION_WINDOW`] iterations is not below [`STAGNATION_FACTOR`] times its
+    /// `stagnation_window` iterations is not below [`STAGNATION_FACTOR`] times its
     /// best before them. A converging CG or Newton iteration gains far more than
     /// that; a stagnating one would otherwise run to `max_iterations`.
     pub(crate) fn stagnated(&self) -> bool {
-        let n = self.history.len();
-        if n <= STAGNATION_WINDOW {
+        let (n, window) = (self.history.len(), self.stagnation_window);
+        if n <= window {
             return false;
         }
         let best = |h: &[f64]| h.iter().copied().fold(f64::INFINITY, f64::min);
-        let (before, recent) = self.history.split_at(n - STAGNATION_WINDOW);
+        let (before, recent) = self.history.split_at(n - window);
         let progressing = best(recent) < STAGNATION_FACTOR * best(before);
         !progressing
     }
 
     /// The message of a stagnated solve, with the model's own diagnosis if any.
     pub(crate) fn stagnation_hint(&self, diagnosis: Option<String>) -> String {
-        let n = self.history.len();
-        let from = self.history[n - 1 - STAGNATION_WINDOW];
+        let (n, window) = (self.history.len(), self.stagnation_window);
+        let from = self.history[n - 1 - window];
         let to = self.last_residual();
         let what = format!(
             "the residual stopped falling (from {from:.3e} to {to:.3e} over the last \
-             {STAGNATION_WINDOW} iterations), so more iterations would not help"
+             {window} iterations), so more iterations would not help"
         );
         match diagnosis {
             Some(d) => format!("{what}; {d}"),
@@ -330,7 +357,20 @@ pub fn solve_problem(
         None => Vec::new(),
     };
     let cold = p.iter().all(|&v| v <= 0.0);
-    let (method, report) = match problem.winkler_compliance() {
+    let symmetric = problem.winkler_compliance();
+    let chosen = match (params.method, symmetric) {
+        (Some(Method::SemismoothNewton), _) => None,
+        (Some(Method::PolonskyKeer), None) => {
+            return Err(Error::invalid(
+                "solver.method",
+                "polonsky_keer",
+                "semi-smooth Newton for a creeping or nonlinear layer (conjugate \
+                 gradients need a symmetric problem)",
+            ))
+        }
+        (_, symmetric) => symmetric,
+    };
+    let (method, report) = match chosen {
         Some(winkler) => {
             if cold {
                 p = window::hertz_like_guess(&grid, &problem.shape, &problem.estimate);
@@ -419,7 +459,7 @@ mod tests {
 
     fn monitor_after(residuals: &[f64], observer: &mut dyn FnMut(Progress)) -> bool {
         let params = SolverParams::default();
-        let mut m = Monitor::new(&params, observer);
+        let mut m = Monitor::new(&params, 50, observer);
         for (k, &r) in residuals.iter().enumerate() {
             m.converged(k + 1, r);
         }

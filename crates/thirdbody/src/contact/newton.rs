@@ -13,9 +13,9 @@
 
 use super::{relative_complementarity_residual, Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::krylov::Gmres;
-use crate::layer::LayerResponse;
+use crate::layer::{LayerResponse, NoLayer};
 use crate::operator::InfluenceOperator;
 use crate::problem::ContactProblem;
 
@@ -64,16 +64,11 @@ pub(crate) fn semismooth_newton(
 ) -> Result<SolveReport> {
     let f = &problem.shape;
     let op = problem.influence.as_mut();
-    let Some(layer) = problem.layer.as_deref() else {
-        return Err(Error::invalid(
-            "layer",
-            "none",
-            "a layer for the semi-smooth Newton solver (a bare body is solved by CG)",
-        ));
-    };
+    // A bare body is solved as one under a layer that does not deform.
+    let layer = problem.layer.as_deref().unwrap_or(&NoLayer);
     let load = problem.load;
     let cell_area = problem.grid.cell_area();
-    let mut monitor = Monitor::new(params, observer);
+    let mut monitor = Monitor::new(params, super::NEWTON_STAGNATION_WINDOW, observer);
     let n = f.len();
     let self_coefficient = op.self_coefficient();
     let layer0 = layer.zero_pressure_self_compliance();

@@ -31,7 +31,7 @@ pub(crate) fn polonsky_keer(
     let op = problem.influence.as_mut();
     let load = problem.load;
     let cell_area = problem.grid.cell_area();
-    let mut monitor = Monitor::new(params, observer);
+    let mut monitor = Monitor::new(params, super::CG_STAGNATION_WINDOW, observer);
     let n = f.len();
     let target_sum = load / cell_area;
     normalise(p, target_sum);
@@ -80,29 +80,47 @@ pub(crate) fn polonsky_keer(
             .zip(p.iter())
             .for_each(|(c, pk)| *c = *pk > 0.0);
         let big_g: f64 = (0..n).filter(|&k| in_contact[k]).map(|k| g[k] * g[k]).sum();
-        let beta = if conjugate { big_g / g_old } else { 0.0 };
-        for k in 0..n {
-            t[k] = if p[k] > 0.0 { g[k] + beta * t[k] } else { 0.0 };
-        }
+        let mut beta = if conjugate { big_g / g_old } else { 0.0 };
         g_old = big_g;
-        apply(op, &t, &mut r);
-        let (mut rsum, mut rcount) = (0.0, 0usize);
-        for k in 0..n {
-            if p[k] > 0.0 {
-                rsum += r[k];
-                rcount += 1;
+        // The step along t minimises the energy under the load constraint only if
+        // the projected curvature `den` is positive. A conjugate direction carried
+        // across a change of the contact set need not sum to zero over the new set;
+        // with a very flat kernel (a stiff coating spreads the load: E1/E2 ~ 100 on
+        // h1 ~ 0.1 a) the load term `rbar sum(t)` then exceeds `t.At` and `den` turns
+        // negative. Steepest descent (t = g, whose sum over the contact is zero
+        // because D is the gap's mean there) always has `den = g.Ag > 0`: restart.
+        let (num, den) = loop {
+            for k in 0..n {
+                t[k] = if p[k] > 0.0 { g[k] + beta * t[k] } else { 0.0 };
             }
-        }
-        let rbar = rsum / rcount.max(1) as f64;
-        let (mut num, mut den) = (0.0, 0.0);
-        for k in 0..n {
-            if p[k] > 0.0 {
-                num += g[k] * t[k];
-                den += (r[k] - rbar) * t[k];
+            apply(op, &t, &mut r);
+            let (mut rsum, mut rcount) = (0.0, 0usize);
+            for k in 0..n {
+                if p[k] > 0.0 {
+                    rsum += r[k];
+                    rcount += 1;
+                }
             }
-        }
+            let rbar = rsum / rcount.max(1) as f64;
+            let (mut num, mut den) = (0.0, 0.0);
+            for k in 0..n {
+                if p[k] > 0.0 {
+                    num += g[k] * t[k];
+                    den += (r[k] - rbar) * t[k];
+                }
+            }
+            if (den > 0.0 && den.is_finite()) || beta == 0.0 {
+                break (num, den);
+            }
+            beta = 0.0;
+        };
         if den <= 0.0 || !den.is_finite() {
-            return Err(monitor.failure(iteration, residual, HINT.into()));
+            let hint = format!(
+                "conjugate gradients broke down: the body's influence operator is not \
+                 positive definite along the steepest-descent direction (curvature \
+                 {den:.3e}), so the kernel is not a valid elastic response at this grid"
+            );
+            return Err(monitor.failure(iteration, residual, hint));
         }
         let tau = num / den;
         let mut projected = false;

@@ -86,6 +86,43 @@ pub trait LayerLinearisation {
     fn solve_restricted(&self, extra_diagonal: f64, active: &[bool], r: &[f64], y: &mut [f64]);
 }
 
+/// No layer: the body's surface is the contact surface (`w3 = 0`). Lets the Newton
+/// solver treat a bare body like a layered one.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct NoLayer;
+
+impl LayerResponse for NoLayer {
+    fn displacement(&self, _p: &[f64], w3: &mut [f64]) {
+        w3.fill(0.0);
+    }
+    fn linearise(&self, _p: &[f64]) -> Box<dyn LayerLinearisation> {
+        Box::new(NoLayer)
+    }
+    fn zero_pressure_self_compliance(&self) -> f64 {
+        0.0
+    }
+    fn winkler_compliance(&self) -> Option<f64> {
+        Some(0.0)
+    }
+    fn stall_diagnosis(&self, _p: &[f64]) -> Option<String> {
+        None
+    }
+    fn compliance(&self, p: &[f64]) -> Vec<f64> {
+        vec![0.0; p.len()]
+    }
+}
+
+impl LayerLinearisation for NoLayer {
+    fn apply(&self, _dp: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+    }
+    fn solve_restricted(&self, extra_diagonal: f64, active: &[bool], r: &[f64], y: &mut [f64]) {
+        for ((yk, &rk), &a) in y.iter_mut().zip(r).zip(active) {
+            *yk = if a { rk / extra_diagonal } else { 0.0 };
+        }
+    }
+}
+
 impl Layer {
     pub(crate) fn validate(&self) -> Result<()> {
         if !matches!(self.law, ComplianceLaw::Table(_)) {
