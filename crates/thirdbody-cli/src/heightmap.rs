@@ -69,7 +69,63 @@ fn read_csv(path: &Path) -> Result<(usize, usize, Vec<f64>), String> {
     Ok((nx, ny, heights))
 }
 
+/// Checks an NPY file's header against its size before anything is allocated: a
+/// header may claim any shape (a 138-byte file claiming (1e8, 1e8) made the reader
+/// ask for 80 PB). The format (magic, version, header length, a Python dict literal
+/// with `'shape': (...)`) is NumPy's NEP 1; only the shape is read here, the full
+/// parse is ndarray-npy's.
+fn check_npy_size(path: &Path) -> Result<(), String> {
+    use std::io::Read;
+    let size = std::fs::metadata(path).map_err(|e| e.to_string())?.len();
+    let mut head = Vec::new();
+    std::fs::File::open(path)
+        .map_err(|e| e.to_string())?
+        .take(65_536 + 12)
+        .read_to_end(&mut head)
+        .map_err(|e| e.to_string())?;
+    if head.len() < 10 || &head[..6] != b"\x93NUMPY" {
+        return Err("not an NPY file (no \\x93NUMPY magic)".into());
+    }
+    let (header_len, start) = match head[6] {
+        1 => (u16::from_le_bytes([head[8], head[9]]) as usize, 10),
+        _ if head.len() >= 12 => (
+            u32::from_le_bytes([head[8], head[9], head[10], head[11]]) as usize,
+            12,
+        ),
+        _ => return Err("a truncated NPY header".into()),
+    };
+    let header = head
+        .get(start..start + header_len)
+        .map(String::from_utf8_lossy)
+        .ok_or("a truncated NPY header")?;
+    let shape = header
+        .split("'shape':")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .ok_or("an NPY header without a shape")?;
+    let mut count: u128 = 1;
+    for dim in shape.trim_start().trim_start_matches('(').split(',') {
+        let dim = dim.trim();
+        if dim.is_empty() {
+            continue;
+        }
+        let n: u128 = dim
+            .trim_end_matches('L')
+            .parse()
+            .map_err(|_| format!("an NPY shape entry {dim:?} that is not a count"))?;
+        count = count.saturating_mul(n);
+    }
+    let data = (size as u128).saturating_sub((start + header_len) as u128);
+    if count.saturating_mul(8) > data {
+        return Err(format!(
+            "its header claims {count} values but the file holds {data} bytes of data"
+        ));
+    }
+    Ok(())
+}
+
 fn read_npy(path: &Path) -> Result<(usize, usize, Vec<f64>), String> {
+    check_npy_size(path)?;
     let array: Array2<f64> = ndarray_npy::read_npy(path).map_err(|e| e.to_string())?;
     let (ny, nx) = array.dim();
     // `iter` visits in logical (row-major) order whatever the memory layout.
@@ -98,6 +154,30 @@ mod tests {
         let m = load(dir.path(), "m.npy", 1.0).unwrap();
         assert_eq!((m.nx, m.ny), (3, 2));
         assert_eq!(m.heights[m.nx + 2], 12.0);
+    }
+
+    #[test]
+    fn an_npy_header_claiming_more_than_the_file_holds_is_refused() {
+        // A valid 2 x 3 file, then the same header claiming (100000000, 100000000).
+        let dir = tempfile::tempdir().unwrap();
+        let a = Array2::from_shape_fn((2, 3), |(j, i)| (10 * j + i) as f64);
+        let path = dir.path().join("m.npy");
+        ndarray_npy::write_npy(&path, &a).unwrap();
+        assert!(check_npy_size(&path).is_ok());
+        // The 138-byte file: a version-1 header and no data.
+        let mut dict =
+            "{'descr': '<f8', 'fortran_order': False, 'shape': (100000000, 100000000), }"
+                .to_string();
+        while (10 + dict.len() + 1) % 64 != 0 {
+            dict.push(' ');
+        }
+        dict.push('\n');
+        let mut header_only = b"\x93NUMPY\x01\x00".to_vec();
+        header_only.extend_from_slice(&(dict.len() as u16).to_le_bytes());
+        header_only.extend_from_slice(dict.as_bytes());
+        std::fs::write(dir.path().join("big.npy"), &header_only).unwrap();
+        let e = load(dir.path(), "big.npy", 1.0).unwrap_err().to_string();
+        assert!(e.contains("slider.file") && e.contains("claims"), "{e}");
     }
 
     #[test]

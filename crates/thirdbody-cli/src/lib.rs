@@ -6,6 +6,17 @@
 
 #![warn(missing_docs)]
 
+/// Prints a line to stdout like `println!`, but a closed stdout (`thirdbody solve ...
+/// | head -1`) is not an error: the line is dropped instead of panicking, and the
+/// command goes on to finish its work and exit as it would have.
+#[macro_export]
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 pub mod atomic;
 pub mod heightmap;
 pub mod plot;

@@ -127,11 +127,44 @@ fn run(cli: Cli) -> Result<()> {
     }
 }
 
+/// Largest case file read: a case is a few hundred bytes; a table law of a few
+/// thousand rows is far below this. Larger input (a 50 MB file, `/dev/zero`) is
+/// refused before it is read whole.
+const MAX_CASE_FILE_BYTES: u64 = 4 << 20;
+
+/// The text of a case file of at most [`MAX_CASE_FILE_BYTES`].
+pub(crate) fn read_case_text(path: &Path) -> Result<String> {
+    use std::io::Read;
+    let cannot = |e: std::io::Error| {
+        BadInput(format!("cannot read the case file {}: {e}", path.display()))
+    };
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .map_err(cannot)?
+        .take(MAX_CASE_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > MAX_CASE_FILE_BYTES {
+        return Err(BadInput(format!(
+            "the case file {} is larger than {} MiB: a case file is a short TOML text",
+            path.display(),
+            MAX_CASE_FILE_BYTES >> 20
+        ))
+        .into());
+    }
+    String::from_utf8(bytes).map_err(|_| {
+        BadInput(format!(
+            "the case file {} is not UTF-8 text",
+            path.display()
+        ))
+        .into()
+    })
+}
+
 /// Reads and validates a case file; height maps are read relative to its folder.
 /// Returns the parsed case and its text.
 fn read_case(path: &Path) -> Result<(CaseFile, String)> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| BadInput(format!("cannot read the case file {}: {e}", path.display())))?;
+    let text = read_case_text(path)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let file = parse_case_file(&text, &mut |file, cell_size| {
         heightmap::load(base, file, cell_size)
@@ -205,15 +238,15 @@ fn solve(args: &SolveArgs) -> Result<()> {
         },
     )?;
     if !args.quiet {
-        println!(
+        thirdbody_cli::say!(
             "{}: {}",
             args.case.display(),
             report::human_summary(&case, &solution, solve_seconds)
         );
         if let Some(results) = &stress {
-            println!("{}", report::stress_summary(&results.summary));
+            thirdbody_cli::say!("{}", report::stress_summary(&results.summary));
         }
-        println!("outputs in {}", args.out.display());
+        thirdbody_cli::say!("outputs in {}", args.out.display());
     }
     Ok(())
 }

@@ -191,8 +191,8 @@ pub fn run(args: &StressArgs) -> Result<()> {
     outputs::write_summary(&mut out, &summary)?;
     out.commit()?;
     if !args.quiet {
-        println!("{}", report::stress_summary(&results.summary));
-        println!("stresses in {}", dir.display());
+        thirdbody_cli::say!("{}", report::stress_summary(&results.summary));
+        thirdbody_cli::say!("stresses in {}", dir.display());
     }
     Ok(())
 }

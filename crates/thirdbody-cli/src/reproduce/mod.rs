@@ -211,7 +211,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         .commit()
         .context("cannot move the reproduced figures into place")?;
     if !args.quiet {
-        println!(
+        thirdbody_cli::say!(
             "reproduced {} figures in {seconds:.0} s; see {}",
             reports.len(),
             args.out.join("report.md").display()

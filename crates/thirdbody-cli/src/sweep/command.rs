@@ -113,7 +113,7 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
             Some(s) => format!(" (shard {}/{}: {} cases)", s.k, s.n, report.shard_cases),
             None => String::new(),
         };
-        println!(
+        crate::say!(
             "{}: {} cases{shard}; computed {} ({} failed), skipped {} already finished",
             args.out.display(),
             report.cases,
@@ -121,7 +121,7 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
             report.computed_failed,
             report.skipped
         );
-        println!(
+        crate::say!(
             "results in {} ({} of {} cases finished, {} failed){}",
             report.results.display(),
             report.finished,
@@ -141,16 +141,16 @@ fn print_cases(sweep: &Sweep, shard: Option<Shard>) {
     let mine: Vec<usize> = (0..sweep.len())
         .filter(|&k| shard.is_none_or(|s| s.owns(k)))
         .collect();
-    println!(
+    crate::say!(
         "{} cases{} (nothing solved or written: --dry-run)",
         sweep.len(),
         shard
             .map(|s| format!(", {} in shard {}/{}", mine.len(), s.k, s.n))
             .unwrap_or_default()
     );
-    println!("case\t{}", names.join("\t"));
+    crate::say!("case\t{}", names.join("\t"));
     for k in mine {
-        println!("{}\t{}", sweep.id(k), sweep.labels(k).join("\t"));
+        crate::say!("{}\t{}", sweep.id(k), sweep.labels(k).join("\t"));
     }
 }
 
@@ -165,7 +165,7 @@ pub fn merge_command(args: &MergeArgs) -> Result<()> {
         );
     }
     if !args.quiet {
-        println!(
+        crate::say!(
             "{}: merged {} folders; {} of {} cases finished ({} failed, {} missing, {} found \
              twice)",
             args.out.display(),
@@ -176,7 +176,7 @@ pub fn merge_command(args: &MergeArgs) -> Result<()> {
             report.missing,
             report.duplicates
         );
-        println!(
+        crate::say!(
             "results in {}{}",
             report.results.display(),
             report

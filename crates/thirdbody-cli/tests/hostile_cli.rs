@@ -1,0 +1,60 @@
+//! Hostile input at the command line (issue 14): each ends with one line naming the
+//! cause and exit code 2, or succeeds; none panics (exit 101) or aborts (134).
+
+mod common;
+
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+fn examples() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+#[test]
+fn a_closed_stdout_is_not_a_panic() {
+    // `thirdbody solve ... | head -1`: the reader goes away before the summary lines.
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_thirdbody"))
+        .arg("solve")
+        .arg(examples().join("hertz.toml"))
+        .arg("--out")
+        .arg(&out)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let output = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(out.join("summary.json").exists());
+}
+
+#[test]
+fn a_huge_or_endless_case_file_is_refused_before_it_is_read() {
+    let root = tempfile::tempdir().unwrap();
+    let big = root.path().join("big.toml");
+    let mut f = std::fs::File::create(&big).unwrap();
+    let line = format!("# {}\n", "x".repeat(1022));
+    for _ in 0..5 * 1024 {
+        f.write_all(line.as_bytes()).unwrap();
+    }
+    drop(f);
+    for path in [big.as_path(), Path::new("/dev/zero")] {
+        let out = root.path().join("out");
+        let run = common::thirdbody(&[
+            "solve".as_ref(),
+            path.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{}: {err}", path.display());
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("larger than 4 MiB"), "{err}");
+        common::assert_no_output(&out);
+    }
+}
