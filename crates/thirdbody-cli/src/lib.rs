@@ -19,6 +19,7 @@ macro_rules! say {
 
 pub mod atomic;
 pub mod heightmap;
+pub mod memory;
 pub mod plot;
 pub mod summary;
 pub mod sweep;

@@ -135,9 +135,8 @@ const MAX_CASE_FILE_BYTES: u64 = 4 << 20;
 /// The text of a case file of at most [`MAX_CASE_FILE_BYTES`].
 pub(crate) fn read_case_text(path: &Path) -> Result<String> {
     use std::io::Read;
-    let cannot = |e: std::io::Error| {
-        BadInput(format!("cannot read the case file {}: {e}", path.display()))
-    };
+    let cannot =
+        |e: std::io::Error| BadInput(format!("cannot read the case file {}: {e}", path.display()));
     let mut bytes = Vec::new();
     std::fs::File::open(path)
         .map_err(cannot)?
@@ -195,6 +194,13 @@ fn solve(args: &SolveArgs) -> Result<()> {
         },
         case_text,
     ) = read_case(&args.case)?;
+    thirdbody_cli::memory::check(
+        &case,
+        stress.as_ref(),
+        1,
+        thirdbody_cli::memory::available_bytes(),
+    )
+    .map_err(BadInput)?;
     if args.out.exists() && !args.out.is_dir() {
         return Err(BadInput(format!(
             "--out {} exists and is not a folder",

@@ -157,6 +157,13 @@ pub fn run(args: &StressArgs) -> Result<()> {
     let summary_path = dir.join("summary.json");
     let mut summary: Value = serde_json::from_str(&read_text(&summary_path, "the summary")?)
         .map_err(|e| bad(format!("{}: {e}", summary_path.display())))?;
+    thirdbody_cli::memory::check(
+        &file.case,
+        Some(&request),
+        1,
+        thirdbody_cli::memory::available_bytes(),
+    )
+    .map_err(bad)?;
     let solution = thirdbody::solve_with(
         &file.case,
         &file.solver,

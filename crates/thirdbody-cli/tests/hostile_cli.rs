@@ -58,3 +58,21 @@ fn a_huge_or_endless_case_file_is_refused_before_it_is_read() {
         common::assert_no_output(&out);
     }
 }
+
+#[test]
+fn a_grid_that_cannot_fit_in_memory_is_refused_before_it_starts() {
+    // 16384² (inside the documented cell range) needs ~55 GiB: more than any machine
+    // this runs on in CI; refused at once with the estimate, exit 2, nothing written.
+    let text = std::fs::read_to_string(examples().join("hertz.toml"))
+        .unwrap()
+        .replace("cells = [128, 128]", "cells = [16384, 16384]");
+    let run = common::solve(&text, &[], &[]);
+    let err = run.stderr();
+    if thirdbody_cli::memory::available_bytes().is_none_or(|b| b > 60.0 * (1u64 << 30) as f64) {
+        return; // a machine with that much memory, or no /proc/meminfo: no refusal to see
+    }
+    assert_eq!(run.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("grid.cells") && err.contains("GiB"), "{err}");
+    common::assert_no_output(&run.out_dir);
+}

@@ -204,6 +204,18 @@ impl Case {
         Ok(())
     }
 
+    /// An upper estimate of the memory a solve of this case takes at its peak, in
+    /// bytes (as f64: it may exceed any integer a caller would allocate). Per cell:
+    /// the DC-FFT scratch and spectrum of the 2nx x 2ny padded grid (~110 bytes), the
+    /// solver's vectors and the solution's fields (~110), and with a layer the Newton
+    /// step's GMRES basis on the contact cells (~150); measured peaks at 1024² are
+    /// 210 (Hertz) and 315 (the paper's Fig. 3) bytes per cell (docs/performance.md).
+    pub fn estimated_solve_bytes(&self) -> f64 {
+        let cells = self.grid.cells[0] as f64 * self.grid.cells[1] as f64;
+        let per_cell = if self.layer.is_some() { 370.0 } else { 220.0 };
+        cells * per_cell + 16.0 * 1024.0 * 1024.0
+    }
+
     /// Sliding velocity, infinite when none is given.
     pub fn velocity(&self) -> f64 {
         self.loading.velocity.unwrap_or(f64::INFINITY)

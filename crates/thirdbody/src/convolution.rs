@@ -61,6 +61,11 @@ pub struct KernelSpectrum {
 }
 
 impl KernelSpectrum {
+    /// Bytes held by the spectrum.
+    pub fn bytes(&self) -> usize {
+        self.values.len() * std::mem::size_of::<Complex<f64>>()
+    }
+
     /// The kernel value at zero offset.
     pub fn self_coefficient(&self) -> f64 {
         self.self_coefficient

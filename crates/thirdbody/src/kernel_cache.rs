@@ -17,6 +17,9 @@ use crate::grid::Grid;
 
 /// Spectra kept by default: the windows an automatic solve tries for a few bodies.
 const DEFAULT_CAPACITY: usize = 8;
+/// Bytes of spectra kept at most: a spectrum takes 32 bytes per cell (a 1024²
+/// grid's 34 MB), so large grids keep fewer; one larger than this is not kept.
+const DEFAULT_BYTE_BUDGET: usize = 256 << 20;
 
 /// What a surface-kernel spectrum depends on: the body, the grid size and the cell
 /// size (bitwise).
@@ -34,6 +37,7 @@ type PlanKey = ([usize; 2], Parallelism);
 #[derive(Debug)]
 pub struct KernelCache {
     capacity: usize,
+    byte_budget: usize,
     plans: Vec<(PlanKey, Arc<ConvolutionPlan>)>,
     spectra: Vec<(SpectrumKey, Arc<KernelSpectrum>)>,
 }
@@ -50,11 +54,12 @@ impl KernelCache {
         KernelCache::default()
     }
 
-    /// An empty cache that keeps up to `capacity` spectra and as many plans (0 keeps
-    /// nothing: every solve builds its own).
+    /// An empty cache that keeps up to `capacity` spectra (and at most 256 MiB of
+    /// them) and as many plans (0 keeps nothing: every solve builds its own).
     pub fn with_capacity(capacity: usize) -> Self {
         KernelCache {
             capacity,
+            byte_budget: DEFAULT_BYTE_BUDGET,
             plans: Vec::new(),
             spectra: Vec::new(),
         }
@@ -110,11 +115,16 @@ impl KernelCache {
             return Ok(spectrum);
         }
         let spectrum = Arc::new(surface_kernel_spectrum(body, grid, plan)?);
-        keep(
-            &mut self.spectra,
-            (key, Arc::clone(&spectrum)),
-            self.capacity,
-        );
+        if spectrum.bytes() <= self.byte_budget {
+            keep(
+                &mut self.spectra,
+                (key, Arc::clone(&spectrum)),
+                self.capacity,
+            );
+            while self.spectra.iter().map(|(_, s)| s.bytes()).sum::<usize>() > self.byte_budget {
+                self.spectra.remove(0);
+            }
+        }
         Ok(spectrum)
     }
 }

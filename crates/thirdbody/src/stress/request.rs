@@ -232,6 +232,27 @@ impl StressRequest {
         Ok(())
     }
 
+    /// An upper estimate of the memory the request's results take on a grid of
+    /// `cells` (nx, ny), in bytes: eleven stored fields (six components, three
+    /// principal stresses, tau1, von Mises) of 8 bytes per point, the block's
+    /// `depth_points x nx x ny` points dominating (a 128² x 4096 block is 5.9 GB).
+    pub fn estimated_bytes(&self, body: &Body, cells: [usize; 2]) -> f64 {
+        let (nx, ny) = (cells[0] as f64, cells[1] as f64);
+        let depths = self.depth_points as f64;
+        let points: f64 = self
+            .kinds(body)
+            .iter()
+            .map(|kind| match kind {
+                SectionKind::Xz => nx * depths,
+                SectionKind::Surface => nx * ny,
+                SectionKind::Interface => 2.0 * nx * ny,
+                SectionKind::Block => nx * ny * depths,
+            })
+            .sum::<f64>()
+            + self.planes.len() as f64 * nx * ny;
+        points * 11.0 * 8.0
+    }
+
     /// The section kinds asked for (the defaults filled in for `body`).
     pub fn kinds(&self, body: &Body) -> Vec<SectionKind> {
         match &self.sections {
