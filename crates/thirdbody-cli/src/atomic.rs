@@ -65,7 +65,96 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
         .with_context(|| format!("cannot write {}", path.display()))
 }
 
-/// Files of one run waiting to be renamed into place.
+/// The lock file of an output folder: the process id of the run writing it.
+pub const LOCK_FILE: &str = "lock";
+
+/// A folder's lock is held by another live run.
+#[derive(Debug)]
+pub struct LockHeld {
+    /// The folder.
+    pub dir: PathBuf,
+    /// The process holding it.
+    pub pid: u32,
+}
+
+impl std::fmt::Display for LockHeld {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} is being written by another run (process {}); wait for it to end or use \
+             another --out folder",
+            self.dir.display(),
+            self.pid
+        )
+    }
+}
+
+impl std::error::Error for LockHeld {}
+
+/// Writes our process id into `dir/lock`, unless a live process holds it (then the
+/// error is a [`LockHeld`]); a lock left by a killed run is taken over.
+pub fn take_lock(dir: &Path) -> Result<()> {
+    use std::io::Write;
+    let path = dir.join(LOCK_FILE);
+    let me = std::process::id();
+    for _ in 0..2 {
+        match fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&path)
+        {
+            Ok(mut f) => {
+                writeln!(f, "{me}")?;
+                return Ok(());
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                let holder = fs::read_to_string(&path)
+                    .ok()
+                    .and_then(|t| t.trim().parse::<u32>().ok());
+                if let Some(pid) = holder {
+                    if pid != me && process_alive(pid) {
+                        return Err(LockHeld {
+                            dir: dir.to_path_buf(),
+                            pid,
+                        }
+                        .into());
+                    }
+                }
+                // Left by a run that was killed: take it over.
+                let _ = fs::remove_file(&path);
+            }
+            Err(e) => return Err(e).with_context(|| format!("cannot create {}", path.display())),
+        }
+    }
+    Err(anyhow::anyhow!("cannot take the lock {}", path.display()))
+}
+
+/// Whether process `pid` runs (Linux: `/proc/<pid>` exists; elsewhere unknown, and a
+/// stale lock is assumed).
+pub fn process_alive(pid: u32) -> bool {
+    cfg!(target_os = "linux") && Path::new(&format!("/proc/{pid}")).exists()
+}
+
+/// Removes the temporaries in `dir` of runs that no longer live (a run killed while
+/// writing leaves them: up to hundreds of MB).
+pub fn remove_dead_temporaries(dir: &Path) {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let pid = name
+            .rsplit_once(".tmp-")
+            .and_then(|(_, rest)| rest.split('.').next()?.parse::<u32>().ok());
+        if let Some(pid) = pid {
+            if is_temporary(&name) && pid != std::process::id() && !process_alive(pid) {
+                let _ = fs::remove_file(entry.path());
+            }
+        }
+    }
+}
+
+/// Files of one run waiting to be renamed into place, in a folder locked for the run.
 pub struct Staging {
     dir: PathBuf,
     created_dir: bool,
@@ -75,11 +164,20 @@ pub struct Staging {
 }
 
 impl Staging {
-    /// Creates the output folder (and its parents) if needed.
+    /// Creates the output folder (and its parents) if needed and locks it (an error
+    /// [`LockHeld`] if another live run writes it); removes temporaries that killed
+    /// runs left there.
     pub fn new(dir: &Path) -> Result<Self> {
         let created_dir = !dir.exists();
         fs::create_dir_all(dir)
             .with_context(|| format!("cannot create the output folder {}", dir.display()))?;
+        if let Err(e) = take_lock(dir) {
+            if created_dir {
+                let _ = fs::remove_dir(dir);
+            }
+            return Err(e);
+        }
+        remove_dead_temporaries(dir);
         Ok(Staging {
             dir: dir.to_path_buf(),
             created_dir,
@@ -98,18 +196,35 @@ impl Staging {
     }
 
     /// Renames every temporary to its final name; returns the final paths.
-    pub fn commit(mut self) -> Result<Vec<PathBuf>> {
+    pub fn commit(self) -> Result<Vec<PathBuf>> {
+        self.commit_replacing(|_| false)
+    }
+
+    /// [`Staging::commit`], then removes the files of the folder that `earlier`
+    /// recognises as outputs of an earlier run and this one did not write (a
+    /// `compliance_map.png` of a layered case beside a layer-free summary).
+    pub fn commit_replacing(mut self, earlier: impl Fn(&str) -> bool) -> Result<Vec<PathBuf>> {
         for (temp, target) in &self.pending {
             fs::rename(temp, target)
                 .with_context(|| format!("cannot move {} into place", target.display()))?;
         }
         self.committed = true;
-        Ok(self.pending.iter().map(|(_, t)| t.clone()).collect())
+        let written: Vec<PathBuf> = self.pending.iter().map(|(_, t)| t.clone()).collect();
+        if let Ok(entries) = fs::read_dir(&self.dir) {
+            for entry in entries.flatten() {
+                let name = entry.file_name().to_string_lossy().into_owned();
+                if earlier(&name) && !written.contains(&entry.path()) {
+                    let _ = fs::remove_file(entry.path());
+                }
+            }
+        }
+        Ok(written)
     }
 }
 
 impl Drop for Staging {
     fn drop(&mut self) {
+        let _ = fs::remove_file(self.dir.join(LOCK_FILE));
         if self.committed {
             return;
         }

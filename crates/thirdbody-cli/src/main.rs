@@ -201,6 +201,13 @@ fn solve(args: &SolveArgs) -> Result<()> {
         thirdbody_cli::memory::available_bytes(),
     )
     .map_err(BadInput)?;
+    if args.out.canonicalize().is_ok_and(|p| p.parent().is_none()) {
+        return Err(BadInput(format!(
+            "--out {} is a file system's root: give a folder for this case's outputs",
+            args.out.display()
+        ))
+        .into());
+    }
     if args.out.exists() && !args.out.is_dir() {
         return Err(BadInput(format!(
             "--out {} exists and is not a folder",

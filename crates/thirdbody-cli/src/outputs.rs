@@ -87,23 +87,48 @@ pub struct SolveOutputs<'a> {
     pub formats: Formats,
 }
 
-/// Whether `name` is one of the files a solve writes (a height map of that name is
-/// not copied beside them).
+/// Whether `name` is one of the files a solve (or `thirdbody stress`) writes: a
+/// height map of that name is not copied beside them, and a new solve into the
+/// folder removes those of an earlier run that it does not write again. Only exact
+/// names are matched, so a user's own files in the folder are never touched.
 pub fn is_output_name(name: &str) -> bool {
-    name == "case.toml"
-        || name == "summary.json"
-        || name.starts_with("pressure.")
-        || name.starts_with("stress_")
-        || name.ends_with(".png")
-        || name.ends_with(".vti")
-        || [
-            "compliance",
-            "body_displacement",
-            "gap",
-            "layer_displacement",
-        ]
-        .iter()
-        .any(|f| name.starts_with(&format!("{f}.")))
+    const FIXED: [&str; 14] = [
+        "summary.json",
+        "case.toml",
+        "pressure.npy",
+        "pressure.csv",
+        "compliance.npy",
+        "body_displacement.npy",
+        "gap.npy",
+        "layer_displacement.npy",
+        "surface.vti",
+        "pressure_map.png",
+        "pressure_x.png",
+        "compliance_map.png",
+        "stress_block.vti",
+        "stress_sigma_x.png",
+    ];
+    if FIXED.contains(&name) {
+        return true;
+    }
+    if let Some(what) = name
+        .strip_prefix("stress_xz_")
+        .and_then(|r| r.strip_suffix(".png"))
+    {
+        return what == "tau1" || what == "sigma_x";
+    }
+    let Some(section) = name
+        .strip_prefix("stress_")
+        .and_then(|r| r.strip_suffix(".npy").or_else(|| r.strip_suffix(".csv")))
+    else {
+        return false;
+    };
+    matches!(
+        section,
+        "xz" | "surface" | "interface_coating" | "interface_substrate" | "block"
+    ) || section
+        .strip_prefix("plane_")
+        .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// Stages `summary.json` (pretty-printed).
@@ -206,7 +231,7 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
             )
         })?;
     }
-    out.commit()
+    out.commit_replacing(is_output_name)
 }
 
 /// The row whose centre is nearest y = 0 (the first of two equally near).

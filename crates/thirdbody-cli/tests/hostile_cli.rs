@@ -76,3 +76,63 @@ fn a_grid_that_cannot_fit_in_memory_is_refused_before_it_starts() {
     assert!(err.contains("grid.cells") && err.contains("GiB"), "{err}");
     common::assert_no_output(&run.out_dir);
 }
+
+fn solve_into(case: &Path, out: &Path) -> std::process::Output {
+    common::thirdbody(&[
+        "solve".as_ref(),
+        case.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--quiet".as_ref(),
+    ])
+}
+
+#[test]
+fn a_solve_into_an_earlier_folder_replaces_its_outputs_and_keeps_other_files() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("out");
+    // A layered case writes compliance_map.png; the layer-free one then must not
+    // leave it beside its own summary. A user's file in the folder stays, and so
+    // does nothing of a killed run's temporaries.
+    let layered = solve_into(&examples().join("paper_fig3.toml"), &out);
+    assert_eq!(layered.status.code(), Some(0));
+    assert!(out.join("compliance_map.png").exists());
+    std::fs::write(out.join("notes.png"), "mine").unwrap();
+    std::fs::write(out.join("pressure.tmp-999999999.npy"), "half").unwrap();
+    let bare = solve_into(&examples().join("hertz.toml"), &out);
+    assert_eq!(
+        bare.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&bare.stderr)
+    );
+    assert!(
+        !out.join("compliance_map.png").exists(),
+        "stale output kept"
+    );
+    assert!(!out.join("compliance.npy").exists(), "stale output kept");
+    assert!(out.join("notes.png").exists(), "a user's file was removed");
+    assert!(
+        !out.join("pressure.tmp-999999999.npy").exists(),
+        "stale temporary kept"
+    );
+    assert!(!out.join("lock").exists(), "the lock outlived the run");
+}
+
+#[test]
+fn a_folder_locked_by_a_live_run_is_refused_and_the_root_is_not_an_output_folder() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    // This test process is alive: its id in the lock makes the folder busy.
+    std::fs::write(out.join("lock"), format!("{}\n", std::process::id())).unwrap();
+    let run = solve_into(&examples().join("hertz.toml"), &out);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_ne!(run.status.code(), Some(0), "{err}");
+    assert!(err.contains("being written by another run"), "{err}");
+    assert!(!out.join("summary.json").exists());
+    let run = solve_into(&examples().join("hertz.toml"), Path::new("/"));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("root"), "{err}");
+}

@@ -14,14 +14,13 @@
 //!   [`super::results`]).
 
 use std::fs;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::atomic::{is_temporary, write_bytes};
+use crate::atomic::{is_temporary, take_lock, write_bytes, LockHeld};
 
 use super::values::KeyValue;
 use super::{Sweep, SweepError};
@@ -30,8 +29,7 @@ use super::{Sweep, SweepError};
 pub const SPEC_FILE: &str = "sweep.json";
 /// The folder of case records.
 pub const CASES_DIR: &str = "cases";
-/// The lock file.
-pub const LOCK_FILE: &str = "lock";
+pub use crate::atomic::LOCK_FILE;
 const FORMAT: &str = "thirdbody sweep 1";
 
 /// `sweep.json`.
@@ -271,7 +269,10 @@ impl Folder {
         check_usable(dir, spec)?;
         fs::create_dir_all(dir.join(CASES_DIR))
             .with_context(|| format!("cannot create the sweep folder {}", dir.display()))?;
-        take_lock(dir)?;
+        take_lock(dir).map_err(|e| match e.downcast_ref::<LockHeld>() {
+            Some(held) => SweepError::Folder(held.to_string()).into(),
+            None => e,
+        })?;
         let folder = Folder {
             dir: dir.to_path_buf(),
         };
@@ -344,49 +345,6 @@ fn only_leftovers(dir: &Path) -> bool {
             || is_temporary(&name)
             || (name == CASES_DIR && fs::read_dir(e.path()).is_ok_and(|mut d| d.next().is_none()))
     })
-}
-
-/// Writes our process id into `dir/lock`, unless a live process holds it.
-fn take_lock(dir: &Path) -> Result<()> {
-    let path = dir.join(LOCK_FILE);
-    let me = std::process::id();
-    for _ in 0..2 {
-        match fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&path)
-        {
-            Ok(mut f) => {
-                writeln!(f, "{me}")?;
-                return Ok(());
-            }
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                let holder = fs::read_to_string(&path)
-                    .ok()
-                    .and_then(|t| t.trim().parse::<u32>().ok());
-                if let Some(pid) = holder {
-                    if pid != me && process_alive(pid) {
-                        return Err(SweepError::Folder(format!(
-                            "{} is being written by another run (process {pid}); wait for \
-                             it to end or use another --out folder",
-                            dir.display()
-                        ))
-                        .into());
-                    }
-                }
-                // Left by a run that was killed: take it over.
-                let _ = fs::remove_file(&path);
-            }
-            Err(e) => return Err(e).with_context(|| format!("cannot create {}", path.display())),
-        }
-    }
-    Err(anyhow::anyhow!("cannot take the lock {}", path.display()))
-}
-
-/// Whether process `pid` runs (Linux: `/proc/<pid>` exists; elsewhere unknown, and a
-/// stale lock is assumed).
-fn process_alive(pid: u32) -> bool {
-    cfg!(target_os = "linux") && Path::new(&format!("/proc/{pid}")).exists()
 }
 
 /// Removes temporaries left by a killed run (the lock is ours, nobody else writes).
