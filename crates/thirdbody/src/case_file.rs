@@ -128,9 +128,29 @@ struct RawLoading {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawGrid {
+    #[serde(default, deserialize_with = "exactly_two")]
     cells: Option<[usize; 2]>,
+    #[serde(default, deserialize_with = "exactly_two")]
     half_width: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "exactly_two")]
     centre: Option<[f64; 2]>,
+}
+
+/// A pair `[x, y]` written as an array of exactly two numbers (a fixed-size array
+/// alone would silently drop a third element: `cells = [128, 128, 128]`).
+fn exactly_two<'de, D, T>(d: D) -> std::result::Result<Option<[T; 2]>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de> + Copy,
+{
+    let values: Vec<T> = Vec::deserialize(d)?;
+    match values[..] {
+        [x, y] => Ok(Some([x, y])),
+        _ => Err(serde::de::Error::custom(format!(
+            "{} values given: give exactly two, [x, y]",
+            values.len()
+        ))),
+    }
 }
 
 #[derive(Debug, Deserialize)]

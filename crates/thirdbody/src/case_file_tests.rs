@@ -312,6 +312,15 @@ fn wrong_type_and_bad_syntax_are_one_line_parse_errors() {
     error_naming(&with(FIG3, "law", "law = \"cubic\""), &["cubic", "sigmoid"]);
     error_naming(&with(FIG3, "poisson", "poisson = "), &["line 8"]);
     error_naming(&with(FIG3, "cells", "cells = [128]"), &["line 23"]);
+    // A third element is not dropped silently (issue 14).
+    error_naming(
+        &with(FIG3, "cells", "cells = [128, 128, 128]"),
+        &["grid.cells", "3 values given", "exactly two"],
+    );
+    error_naming(
+        &add(FIG3, "grid", "half_width = [0.06, 0.06, 5.0]"),
+        &["grid.half_width", "3 values given"],
+    );
 }
 
 #[test]
