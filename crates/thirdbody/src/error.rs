@@ -86,9 +86,16 @@ impl Error {
 
     /// Shorthand for [`Error::InvalidValue`].
     pub fn invalid(field: &str, value: impl std::fmt::Display, allowed: &str) -> Self {
+        let value = value.to_string();
+        // f64's Display writes 1e308 as 309 digits: a long number reads better in
+        // exponent form.
+        let value = match value.parse::<f64>() {
+            Ok(v) if value.len() > 16 => format!("{v:e}"),
+            _ => value,
+        };
         Error::InvalidValue {
             field: field.to_string(),
-            value: value.to_string(),
+            value,
             allowed: allowed.to_string(),
         }
     }

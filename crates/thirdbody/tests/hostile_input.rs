@@ -109,3 +109,31 @@ fn numbers_that_overflow_stop_at_once_and_say_so() {
         e => panic!("unexpected error {e}"),
     }
 }
+
+#[test]
+fn extreme_values_are_named_in_their_own_format() {
+    // poisson = 1e308: the value is printed as 1e308, not as 309 digits.
+    let mut case = hertz(32, None, None);
+    case.body = Body::Homogeneous(Elastic {
+        young: 1.0,
+        poisson: 1e308,
+    });
+    let e = solve(&case, &SolverParams::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("substrate.poisson = 1e308"), "{e}");
+    // A contact estimate that overflows names the keys that enter it, not "grid".
+    let mut case = hertz(32, None, None);
+    case.body = Body::Homogeneous(Elastic {
+        young: 1e-308,
+        poisson: 0.3,
+    });
+    case.loading.normal_load = 1e300;
+    let e = solve(&case, &SolverParams::default()).unwrap_err();
+    assert!(e.is_input(), "{e}");
+    let text = e.to_string();
+    assert!(
+        text.contains("estimated contact size") && text.contains("loading.normal_load"),
+        "{text}"
+    );
+}

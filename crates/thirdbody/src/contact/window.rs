@@ -76,6 +76,29 @@ pub(crate) fn initial_window(case: &Case) -> Result<Grid> {
         return Grid::centred(nx, ny, 2.0 * wx / nx as f64, centre);
     }
     let e = ContactEstimate::of(case);
+    for (extent, keys) in [
+        (
+            e.symmetric_radius,
+            "slider radius, the moduli, loading.normal_load and layer.compliance",
+        ),
+        (
+            e.leading_extent,
+            "loading.velocity, layer.relaxation_time and layer.compliance",
+        ),
+    ] {
+        let ok = extent.is_finite() && extent > 0.0;
+        if !ok {
+            return Err(Error::invalid(
+                "case",
+                format!("an estimated contact size of {extent:e}"),
+                &format!(
+                    "values whose contact estimate is a finite size > 0 (it is \
+                     (3 Q R / 4 E*)^(1/3), or (4 R C0 Q / pi)^(1/4), or (3 Q C0 R / 2 V T)^(1/3) \
+                     with a layer): check {keys}"
+                ),
+            ));
+        }
+    }
     let x_lo = -MARGIN * e.symmetric_radius;
     let x_hi = MARGIN * e.leading_extent;
     let half_y = MARGIN * e.leading_extent;
