@@ -237,6 +237,9 @@ fn solve(args: &SolveArgs) -> Result<()> {
         .transpose()?;
     let summary =
         thirdbody_cli::summary::summary_json(&case, &solution, solve_seconds, stress.as_ref())?;
+    for warning in thirdbody::report::model_warnings(&case, &solution) {
+        eprintln!("warning: {warning}");
+    }
     let height_map = height_map_file(&case_text, &args.case);
     outputs::write_all(
         &args.out,

@@ -17,8 +17,8 @@ pub fn summary_json(
     stress: Option<&StressResults>,
 ) -> Result<Value> {
     Ok(serde_json::to_value(Report::new(
+        case,
         solution,
-        case.units,
         solve_seconds,
         stress,
     ))?)

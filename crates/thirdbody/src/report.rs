@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use crate::case::Units;
+use crate::case::{Case, Units};
 use crate::solution::{Method, Solution, Summary};
 use crate::stress::{StressResults, StressSummary};
 
@@ -38,6 +38,59 @@ pub struct Report {
     /// Stress results, when stresses were computed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stress: Option<StressReport>,
+    /// Where the result lies outside the model's assumptions (see
+    /// [`model_warnings`]); absent when there is nothing to say.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}
+
+/// Largest contact half-length, as a fraction of the slider's radius, for which the
+/// half-space and paraboloid model is taken to hold (the paraboloid differs from a
+/// sphere by 0.3% at 0.1 R; the half-space needs the contact small against the body).
+pub const MAX_CONTACT_FRACTION: f64 = 0.1;
+/// Largest approach D as a fraction of R (for Hertz, a/R = 0.1 means D/R = 0.01).
+pub const MAX_APPROACH_FRACTION: f64 = 0.01;
+
+/// Sentences saying where `solution` of `case` lies outside the model's
+/// assumptions: a contact or an approach that is not small against the slider's
+/// radius, or a friction coefficient above 1 (the small-slope hysteresis friction of
+/// paper eq. 12 is then meaningless).
+pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
+    let s = solution.summary();
+    let r = case.slider.equivalent_radius();
+    let mut out = Vec::new();
+    let half_length = [
+        s.contact_x_min.abs(),
+        s.contact_x_max.abs(),
+        s.contact_y_min.abs(),
+        s.contact_y_max.abs(),
+    ]
+    .into_iter()
+    .filter(|v| v.is_finite())
+    .fold(0.0f64, f64::max);
+    if half_length > MAX_CONTACT_FRACTION * r {
+        out.push(format!(
+            "the contact reaches {:.3e} R from the initial contact point (more than \
+             {MAX_CONTACT_FRACTION} R): the half-space and paraboloid model assumes a \
+             contact small against the slider",
+            half_length / r
+        ));
+    }
+    if s.penetration > MAX_APPROACH_FRACTION * r {
+        out.push(format!(
+            "the approach D is {:.3e} R (more than {MAX_APPROACH_FRACTION} R): the model \
+             assumes small deformations",
+            s.penetration / r
+        ));
+    }
+    if s.friction_coefficient.abs() > 1.0 {
+        out.push(format!(
+            "mu = {:.3e} exceeds 1: the hysteresis friction of paper eq. 12 assumes small \
+             slopes, which such a contact does not have",
+            s.friction_coefficient
+        ));
+    }
+    out
 }
 
 /// The `stress` object of a report.
@@ -97,11 +150,11 @@ impl StressReport {
 }
 
 impl Report {
-    /// The report of `solution`, solved in `units` in `solve_seconds`, with the
+    /// The report of `solution` of `case`, solved in `solve_seconds`, with the
     /// stresses computed from it, if any.
     pub fn new(
+        case: &Case,
         solution: &Solution,
-        units: Units,
         solve_seconds: f64,
         stress: Option<&StressResults>,
     ) -> Self {
@@ -112,7 +165,7 @@ impl Report {
         Report {
             summary: solution.summary(),
             solve_seconds,
-            units: units.name(),
+            units: case.units.name(),
             method: info.method,
             linear_iterations: info.linear_iterations,
             windows: info.windows,
@@ -121,6 +174,7 @@ impl Report {
             window_y_min: cy - wy,
             window_y_max: cy + wy,
             stress: stress.map(StressReport::of),
+            warnings: model_warnings(case, solution),
         }
     }
 }

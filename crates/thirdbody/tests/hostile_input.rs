@@ -137,3 +137,30 @@ fn extreme_values_are_named_in_their_own_format() {
         "{text}"
     );
 }
+
+#[test]
+fn results_outside_the_model_carry_warnings() {
+    // V' = 1e-30 (the case): mu ~ 3e7 and a contact 5e7 R long. The report
+    // says so; the paper's Fig. 3 case, inside the model, has no warning.
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/paper_fig3.toml"),
+    )
+    .unwrap()
+    .replace("cells = [128, 128]", "cells = [32, 32]");
+    let parse = |t: &str| {
+        thirdbody::case_file::parse_case_file(t, &mut |_, _| unreachable!())
+            .unwrap()
+            .case
+    };
+    let inside = parse(&text);
+    let s = solve(&inside, &SolverParams::default()).unwrap();
+    assert!(thirdbody::report::model_warnings(&inside, &s).is_empty());
+    let outside = parse(&text.replace("velocity = 1e-3", "velocity = 1e-30"));
+    let s = solve(&outside, &SolverParams::default()).unwrap();
+    let w = thirdbody::report::model_warnings(&outside, &s).join("\n");
+    for part in ["contact reaches", "approach D", "exceeds 1"] {
+        assert!(w.contains(part), "{w}");
+    }
+    let report = thirdbody::Report::new(&outside, &s, 0.0, None);
+    assert_eq!(report.warnings.len(), 3);
+}
