@@ -112,19 +112,32 @@ pub fn parse_values(text: &str) -> Result<ValueList, String> {
     Ok(ValueList { values, log_spaced })
 }
 
-/// Refuses a value given twice (by its label: `1` and `1.0` count as the same).
+/// Refuses a value given twice (by its label, or by its number: `1` and `1.0` count
+/// as the same). O(n log n): a sweep axis of a million values is checked at once.
 pub fn check_distinct(values: &[KeyValue]) -> Result<(), String> {
-    for (k, v) in values.iter().enumerate() {
-        let dup = values[..k].iter().any(|w| {
-            w.label() == v.label()
-                || matches!((w.number(), v.number()), (Some(a), Some(b)) if a == b)
-        });
-        if dup {
-            return Err(format!(
-                "the value {} is given twice (each value makes one case)",
-                v.label()
-            ));
+    let twice = |label: String| {
+        Err(format!(
+            "the value {label} is given twice (each value makes one case)"
+        ))
+    };
+    let mut labels = std::collections::HashSet::with_capacity(values.len());
+    for v in values {
+        let label = v.label();
+        if !labels.insert(label.clone()) {
+            return twice(label);
         }
+    }
+    let mut numbers: Vec<(f64, usize)> = values
+        .iter()
+        .enumerate()
+        .filter_map(|(k, v)| v.number().map(|x| (x, k)))
+        .collect();
+    numbers.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Equal numbers are neighbours after sorting (-0.0 and 0.0 too: they are
+    // adjacent in total order and equal under ==).
+    if let Some(w) = numbers.windows(2).find(|w| w[0].0 == w[1].0) {
+        let k = w[0].1.max(w[1].1);
+        return twice(values[k].label());
     }
     Ok(())
 }
@@ -155,6 +168,10 @@ fn toml_value(item: &str) -> Option<Value> {
     let table: toml::Table = toml::from_str(&format!("v = {item}")).ok()?;
     table.get("v").cloned()
 }
+
+/// Most values one range may give (each is a case; 10^5 cases of a 128² solve are
+/// about three hours on two cores).
+pub const MAX_RANGE_VALUES: usize = 100_000;
 
 /// `a..b:n` (log-spaced) or `a..b:n:lin` / `a..b:n:log`.
 fn parse_range(item: &str) -> Result<Item, String> {
@@ -194,6 +211,12 @@ fn parse_range(item: &str) -> Result<Item, String> {
             count.trim()
         )
     })?;
+    if n > MAX_RANGE_VALUES {
+        return Err(format!(
+            "`{item}`: {n} values is more than a range may give ({MAX_RANGE_VALUES}); a \
+             sweep of that size is a job array's work: split it with --shard or give fewer"
+        ));
+    }
     if n < 2 {
         return Err(format!(
             "`{item}`: a range of {n} value{} is empty or degenerate; give n >= 2 (or list \
@@ -328,6 +351,8 @@ mod tests {
         assert!(err("1..2:3:cubic").contains("unknown spacing `cubic`"));
         assert!(err("0.1,0.1").contains("0.1 is given twice"));
         assert!(err("1,1.0").contains("given twice"));
+        assert!(err("0.0,-0.0").contains("given twice"));
+        assert!(err("1e-3..1e-1:100000000").contains("more than a range may give"));
         assert!(err("[1, 2").contains("unclosed"));
         assert!(err("\"abc").contains("unclosed"));
     }
