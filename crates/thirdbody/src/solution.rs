@@ -110,6 +110,32 @@ pub struct Summary {
     pub cell_size: f64,
 }
 
+impl Summary {
+    /// Whether every number is finite (a result with an overflowed friction sum or
+    /// moment must not be reported).
+    pub fn is_finite(&self) -> bool {
+        [
+            self.normal_load,
+            self.penetration,
+            self.max_pressure,
+            self.max_pressure_x,
+            self.max_pressure_y,
+            self.contact_area,
+            self.contact_x_min,
+            self.contact_x_max,
+            self.contact_y_min,
+            self.contact_y_max,
+            self.moment,
+            self.friction_coefficient,
+            self.tangential_force,
+            self.residual,
+            self.cell_size,
+        ]
+        .iter()
+        .all(|v| v.is_finite())
+    }
+}
+
 impl Solution {
     /// The scalar results.
     pub fn summary(&self) -> Summary {

@@ -430,7 +430,7 @@ fn finish(
             hint: "the solution is not finite; check the case's scales".into(),
         });
     }
-    Ok(Solution {
+    let solution = Solution {
         grid,
         body: problem.body,
         pressure: p,
@@ -450,7 +450,20 @@ fn finish(
             windows: 1,
             history: report.history,
         },
-    })
+    };
+    if !solution.summary().is_finite() {
+        return Err(Error::NoConvergence {
+            iterations: solution.info.iterations,
+            residual: solution.info.residual,
+            tolerance: 0.0,
+            history: solution.info.history,
+            hint: "the pressure is finite but the friction sum or the moment overflows: \
+                   the slider's radius or the case's values are out of double \
+                   precision's range together"
+                .into(),
+        });
+    }
+    Ok(solution)
 }
 
 #[cfg(test)]
