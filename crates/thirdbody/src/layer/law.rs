@@ -255,16 +255,9 @@ impl ComplianceLaw {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layer::{Integration, Layer};
+    use crate::layer::tests::sigmoid;
+    use crate::layer::Integration;
 
-    fn sigmoid(delta: f64, p0: f64, integration: Integration) -> Layer {
-        Layer {
-            compliance: 0.02,
-            relaxation_time: 1.0,
-            law: ComplianceLaw::Sigmoid { delta, p0 },
-            integration,
-        }
-    }
 
     /// Composite Simpson rule, an independent check of the closed-form G.
     fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {

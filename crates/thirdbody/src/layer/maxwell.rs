@@ -213,16 +213,9 @@ impl LayerLinearisation for MaxwellJacobian {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::layer::tests::sigmoid;
     use crate::layer::{ComplianceLaw, Integration};
 
-    fn sigmoid(delta: f64, p0: f64, integration: Integration) -> Layer {
-        Layer {
-            compliance: 0.02,
-            relaxation_time: 1.0,
-            law: ComplianceLaw::Sigmoid { delta, p0 },
-            integration,
-        }
-    }
 
     #[test]
     fn delta_zero_is_the_linear_law_exactly() {

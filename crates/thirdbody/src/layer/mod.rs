@@ -187,3 +187,18 @@ impl Layer {
         (l.compliance * p, l.compliance + l.slope * p.max(0.0))
     }
 }
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// The paper's sigmoid layer (C0 = 0.02, T = 1) for the layer modules' tests.
+    pub(crate) fn sigmoid(delta: f64, p0: f64, integration: Integration) -> Layer {
+        Layer {
+            compliance: 0.02,
+            relaxation_time: 1.0,
+            law: ComplianceLaw::Sigmoid { delta, p0 },
+            integration,
+        }
+    }
+}
