@@ -114,7 +114,13 @@ proptest! {
             max_windows: 3,
             ..file.solver
         };
+        let start = std::time::Instant::now();
         let solved = solve(&file.case, &params);
+        let seconds = start.elapsed().as_secs_f64();
+        if seconds > 5.0 {
+            // Slow inputs are findings too (issue 14: nothing may run past 60 s).
+            eprintln!("fuzz: slow case ({seconds:.1} s):\n{text}\n---");
+        }
         count(if solved.is_ok() { 2 } else { 1 });
         if let Ok(s) = solved {
             let summary = serde_json::to_value(s.summary()).unwrap();

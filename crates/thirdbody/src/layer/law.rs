@@ -258,7 +258,6 @@ mod tests {
     use crate::layer::tests::sigmoid;
     use crate::layer::Integration;
 
-
     /// Composite Simpson rule, an independent check of the closed-form G.
     fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
         let h = (b - a) / n as f64;

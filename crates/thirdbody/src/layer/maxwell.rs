@@ -216,7 +216,6 @@ mod tests {
     use crate::layer::tests::sigmoid;
     use crate::layer::{ComplianceLaw, Integration};
 
-
     #[test]
     fn delta_zero_is_the_linear_law_exactly() {
         let lin = Layer {
