@@ -8,7 +8,7 @@
 //! uses the embedded DejaVu Sans, so no system font is needed. Files are written
 //! atomically: rendered to `<stem>.tmp-<pid>.<ext>` next to the target, then renamed.
 //!
-//! Conventions (design.md §1): grid fields are row-major with rows along y,
+//! Conventions (docs/architecture.md, conventions): grid fields are row-major with rows along y,
 //! `field[j * nx + i]` at `x = x0 + (i + 1/2) h`, `y = y0 + (j + 1/2) h`; sections are
 //! row-major with rows along depth z, drawn increasing downward (z points into the body).
 //!

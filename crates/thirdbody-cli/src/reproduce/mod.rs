@@ -243,7 +243,7 @@ fn report_markdown(reports: &[FigureReport], r: Resolution, seconds: f64) -> Str
          of Homogeneous and Coated Elastic Solids*, Lubricants 2023, 11, 333. All \
          quantities are the paper's dimensionless ones (section 4): lengths / R, stresses / \
          E2, V' = V T / R, C' = C0 E2 / R, sphere R = 1, E2 = 1, nu2 = 0.3, T = 1, exact \
-         integration of the layer law (design.md §1). Grid: {} x {} cells, automatic \
+         integration of the layer law (docs/architecture.md, conventions). Grid: {} x {} cells, automatic \
          window; {} points per parameter-study curve. Computed in {seconds:.0} s.\n",
         r.cells, r.cells, r.points
     );

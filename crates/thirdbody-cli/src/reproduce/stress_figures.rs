@@ -149,7 +149,7 @@ pub fn fig10(
          instead of 34%); docs/paper-discrepancies.md tries every reading the paper leaves \
          open (tau1 definition, grid and window, direction of the creep integral, which \
          compliance multiplies the creep) and none reproduces the published numbers. \
-         Coarse grids overestimate the pressure peak at the leading edge (design.md §1a)."
+         Coarse grids overestimate the pressure peak at the leading edge (docs/architecture.md, readings of the paper)."
             .into(),
     );
     Ok(rep)
