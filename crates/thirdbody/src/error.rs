@@ -54,6 +54,13 @@ pub enum Error {
         /// What the user can try.
         hint: String,
     },
+    /// The case's values are out of double precision's range together: the solver's
+    /// numbers overflow or underflow (an input error, like an invalid value).
+    #[error("the case cannot be computed in double precision: {why}")]
+    OutOfRange {
+        /// What overflowed and which keys to check.
+        why: String,
+    },
     /// The contact reached the edge of the computational window.
     #[error(
         "the contact reaches the edge of the window (half widths {half_width_x:.4e} x \
@@ -81,6 +88,7 @@ impl Error {
                 | Error::MissingField { .. }
                 | Error::UnusedField { .. }
                 | Error::Parse(_)
+                | Error::OutOfRange { .. }
         )
     }
 

@@ -39,6 +39,12 @@ pub(crate) const CG_STAGNATION_WINDOW: usize = 500;
 /// See [`NEWTON_STAGNATION_WINDOW`].
 const STAGNATION_FACTOR: f64 = 0.5;
 
+/// What an overflowing solve says.
+const OVERFLOW: &str = "the solver's numbers are not finite (they overflow or underflow): \
+     the case's values are out of double precision's range together, or the contact is \
+     not small against the slider; check slider.radius, the moduli, \
+     loading.normal_load and the layer's compliance";
+
 /// Stopping criteria and resources of a solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverParams {
@@ -189,20 +195,32 @@ impl<'a> Monitor<'a> {
         residual <= self.tolerance
     }
 
-    /// Why the solve should stop short of the tolerance, if it should: a residual
-    /// that is not finite (at once), or one that has stopped falling
-    /// ([`Monitor::stagnated`]); `diagnosis` is the model's own explanation, if any.
-    pub(crate) fn stop_reason(&self, diagnosis: impl FnOnce() -> Option<String>) -> Option<String> {
+    /// The error that stops the solve short of the tolerance, if it should stop: a
+    /// residual that is not finite (at once; the case's values overflow), or one that
+    /// has stopped falling ([`Monitor::stagnated`]; `diagnosis` is the model's own
+    /// explanation, if any).
+    pub(crate) fn stop(
+        &mut self,
+        iteration: usize,
+        residual: f64,
+        diagnosis: impl FnOnce() -> Option<String>,
+    ) -> Option<Error> {
         if !self.last_residual().is_finite() {
-            return Some(
-                "the solver's numbers are not finite (they overflow or underflow): the \
-                 case's values are out of double precision's range together, or the \
-                 contact is not small against the slider; check slider.radius, the \
-                 moduli, loading.normal_load and the layer's compliance"
-                    .into(),
-            );
+            return Some(Error::OutOfRange {
+                why: OVERFLOW.into(),
+            });
         }
-        self.stagnated().then(|| self.stagnation_hint(diagnosis()))
+        if !self.stagnated() {
+            return None;
+        }
+        let hint = self.stagnation_hint(diagnosis());
+        Some(Error::NoConvergence {
+            iterations: iteration,
+            residual,
+            tolerance: self.tolerance,
+            history: std::mem::take(&mut self.history),
+            hint,
+        })
     }
 
     /// Whether the residual has stopped falling: its best over the last
@@ -422,12 +440,8 @@ fn finish(
         .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + problem.shape[k] - report.approach)
         .collect();
     if !p.iter().chain(&gap).all(|v| v.is_finite()) {
-        return Err(Error::NoConvergence {
-            iterations: report.iterations,
-            residual: f64::NAN,
-            tolerance: 0.0,
-            history: report.history,
-            hint: "the solution is not finite; check the case's scales".into(),
+        return Err(Error::OutOfRange {
+            why: OVERFLOW.into(),
         });
     }
     let solution = Solution {
@@ -452,14 +466,9 @@ fn finish(
         },
     };
     if !solution.summary().is_finite() {
-        return Err(Error::NoConvergence {
-            iterations: solution.info.iterations,
-            residual: solution.info.residual,
-            tolerance: 0.0,
-            history: solution.info.history,
-            hint: "the pressure is finite but the friction sum or the moment overflows: \
-                   the slider's radius or the case's values are out of double \
-                   precision's range together"
+        return Err(Error::OutOfRange {
+            why: "the pressure is finite but the friction sum or the moment overflows: \
+                  check slider.radius against the contact's size"
                 .into(),
         });
     }

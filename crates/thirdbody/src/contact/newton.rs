@@ -114,8 +114,8 @@ pub(crate) fn semismooth_newton(
         if monitor.converged(iteration, residual) {
             return Ok(monitor.report(iteration, linear_iterations, approach));
         }
-        if let Some(hint) = monitor.stop_reason(|| layer.stall_diagnosis(p)) {
-            return Err(monitor.failure(iteration, residual, hint));
+        if let Some(error) = monitor.stop(iteration, residual, || layer.stall_diagnosis(p)) {
+            return Err(error);
         }
         last_residual = residual;
         // A folding row relation is a property of the discrete model, not of the

@@ -72,8 +72,8 @@ pub(crate) fn polonsky_keer(
             since_refresh = 0;
             continue;
         }
-        if let Some(hint) = monitor.stop_reason(|| None) {
-            return Err(monitor.failure(iteration, residual, hint));
+        if let Some(error) = monitor.stop(iteration, residual, || None) {
+            return Err(error);
         }
         in_contact
             .iter_mut()
