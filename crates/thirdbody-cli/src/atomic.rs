@@ -108,9 +108,20 @@ pub fn take_lock(dir: &Path) -> Result<()> {
                 return Ok(());
             }
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                let holder = fs::read_to_string(&path)
-                    .ok()
-                    .and_then(|t| t.trim().parse::<u32>().ok());
+                // A run that has just created the lock may not have written its id
+                // yet: an empty lock is read again for a moment before it counts as
+                // stale (taking it over at once let two sweeps started together
+                // remove each other's files).
+                let mut holder = None;
+                for _ in 0..20 {
+                    holder = fs::read_to_string(&path)
+                        .ok()
+                        .and_then(|t| t.trim().parse::<u32>().ok());
+                    if holder.is_some() || !path.exists() {
+                        break;
+                    }
+                    std::thread::sleep(std::time::Duration::from_millis(25));
+                }
                 if let Some(pid) = holder {
                     if pid != me && process_alive(pid) {
                         return Err(LockHeld {

@@ -20,7 +20,7 @@ use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::atomic::{is_temporary, take_lock, write_bytes, LockHeld};
+use crate::atomic::{is_temporary, remove_dead_temporaries, take_lock, write_bytes, LockHeld};
 
 use super::values::KeyValue;
 use super::{Sweep, SweepError};
@@ -276,8 +276,8 @@ impl Folder {
         let folder = Folder {
             dir: dir.to_path_buf(),
         };
-        remove_temporaries(&dir.join(CASES_DIR));
-        remove_temporaries(dir);
+        remove_dead_temporaries(&dir.join(CASES_DIR));
+        remove_dead_temporaries(dir);
         if !dir.join(SPEC_FILE).exists() {
             let mut text = serde_json::to_string_pretty(spec)?;
             text.push('\n');
@@ -345,20 +345,6 @@ fn only_leftovers(dir: &Path) -> bool {
             || is_temporary(&name)
             || (name == CASES_DIR && fs::read_dir(e.path()).is_ok_and(|mut d| d.next().is_none()))
     })
-}
-
-/// Removes temporaries left by a killed run (the lock is ours, nobody else writes).
-fn remove_temporaries(dir: &Path) {
-    let Ok(entries) = fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let name = entry.file_name();
-        let name = name.to_string_lossy();
-        if is_temporary(&name) {
-            let _ = fs::remove_file(entry.path());
-        }
-    }
 }
 
 #[cfg(test)]
