@@ -1,30 +1,17 @@
 //! Hostile and extreme input reaching the library (issue 14): each ends at once with
 //! an error naming the key or the cause, never a panic, a hang or a non-finite result.
 
-use thirdbody::stress::{derived::principal_stresses, SectionKind, StressRequest};
-use thirdbody::{
-    solve, Body, Case, Elastic, Error, GridSpec, Loading, Slider, SolverParams, Units,
-};
+mod cases;
 
+use thirdbody::stress::{derived::principal_stresses, SectionKind, StressRequest};
+use thirdbody::{solve, Body, Case, Elastic, Error, Slider, SolverParams};
+
+/// The paper's sphere on a half-space (Q' = 5e-6), with an optional fixed window.
 fn hertz(cells: usize, half_width: Option<[f64; 2]>, centre: Option<[f64; 2]>) -> Case {
-    Case {
-        slider: Slider::Sphere { radius: 1.0 },
-        body: Body::Homogeneous(Elastic {
-            young: 1.0,
-            poisson: 0.3,
-        }),
-        layer: None,
-        loading: Loading {
-            normal_load: 5e-6,
-            velocity: None,
-        },
-        grid: GridSpec {
-            cells: [cells, cells],
-            half_width,
-            centre,
-        },
-        units: Units::Dimensionless,
-    }
+    let mut c = cases::sphere(5e-6, cells);
+    c.grid.half_width = half_width;
+    c.grid.centre = centre;
+    c
 }
 
 #[test]
