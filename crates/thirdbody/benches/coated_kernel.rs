@@ -42,15 +42,15 @@ fn fig7_case(thickness: f64) -> Case {
             thickness,
             substrate: SUBSTRATE,
         },
-        layer: Some(Layer {
-            compliance: 0.02,
-            relaxation_time: 1.0,
-            law: ComplianceLaw::Sigmoid {
+        layer: Some(Layer::maxwell(
+            0.02,
+            1.0,
+            ComplianceLaw::Sigmoid {
                 delta: 0.5,
                 p0: 0.005,
             },
-            integration: Integration::Exact,
-        }),
+            Integration::Exact,
+        )),
         loading: Loading {
             normal_load: 5e-6,
             velocity: Some(1e-3),

@@ -76,12 +76,12 @@ fn case(delta: f64, integration: Integration, cells: usize) -> Case {
             young: 1.0,
             poisson: 0.3,
         }),
-        layer: Some(Layer {
-            compliance: 0.02,
-            relaxation_time: 1.0,
-            law: ComplianceLaw::Sigmoid { delta, p0: 0.005 },
+        layer: Some(Layer::maxwell(
+            0.02,
+            1.0,
+            ComplianceLaw::Sigmoid { delta, p0: 0.005 },
             integration,
-        }),
+        )),
         loading: Loading {
             normal_load: 5e-6,
             velocity: Some(1e-3),
@@ -257,7 +257,10 @@ fn sensitivity(params: &SolverParams) -> Result<()> {
             let mut c = case(delta, Integration::Exact, 128);
             c.loading.velocity = Some(v);
             if let Some(layer) = c.layer.as_mut() {
-                layer.compliance = c0;
+                layer.rheology = thirdbody::Rheology::Maxwell {
+                    compliance: c0,
+                    relaxation_time: 1.0,
+                };
             }
             let sol = solve(&c, params)?;
             let s = sol.summary();

@@ -16,7 +16,9 @@ use serde::Deserialize;
 use crate::case::{Body, Case, Elastic, GridSpec, Loading, Units};
 use crate::contact::SolverParams;
 use crate::error::{Error, Result};
-use crate::layer::{ComplianceLaw, Integration, Layer, Table};
+use crate::layer::{
+    ComplianceLaw, Integration, Layer, RelaxationBranch, RetardationBranch, Rheology, Table,
+};
 use crate::shape::{HeightMap, Slider};
 use crate::stress::{SectionKind, StressRequest};
 
@@ -86,6 +88,19 @@ struct RawCoating {
     thickness: Option<f64>,
 }
 
+#[derive(Debug, Default, Clone, Copy, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum RawRheology {
+    #[default]
+    Maxwell,
+    KelvinVoigt,
+    Zener,
+    Burgers,
+    Prony,
+    RelaxationProny,
+    FractionalZener,
+}
+
 #[derive(Debug, Default, Deserialize)]
 #[serde(rename_all = "snake_case")]
 enum RawLaw {
@@ -106,8 +121,19 @@ enum RawIntegration {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLayer {
+    #[serde(default)]
+    rheology: RawRheology,
     compliance: Option<f64>,
     relaxation_time: Option<f64>,
+    glassy_compliance: Option<f64>,
+    retardation_time: Option<f64>,
+    branch_compliances: Option<Vec<f64>>,
+    branch_times: Option<Vec<f64>>,
+    viscosity: Option<f64>,
+    equilibrium_stiffness: Option<f64>,
+    branch_stiffnesses: Option<Vec<f64>>,
+    order: Option<f64>,
+    branch_count: Option<usize>,
     #[serde(default)]
     law: RawLaw,
     delta: Option<f64>,
@@ -401,12 +427,7 @@ fn slider_shape(
 }
 
 fn layer(l: RawLayer) -> Result<Layer> {
-    let relaxation_time = need(
-        l.relaxation_time,
-        "layer.relaxation_time",
-        "a [layer] needs its relaxation time T (> 0)",
-    )?;
-    let (compliance, law) = match l.law {
+    let law = match l.law {
         RawLaw::Linear => {
             let why = "only law = \"sigmoid\" uses delta and p0, only law = \"table\" uses \
                        pressures and compliances";
@@ -414,59 +435,274 @@ fn layer(l: RawLayer) -> Result<Layer> {
             unused(l.p0.is_some(), "layer.p0", why)?;
             unused(l.pressures.is_some(), "layer.pressures", why)?;
             unused(l.compliances.is_some(), "layer.compliances", why)?;
-            let c0 = need(
-                l.compliance,
-                "layer.compliance",
-                "a linear layer needs its compliance C0 (> 0)",
-            )?;
-            (c0, ComplianceLaw::Linear)
+            ComplianceLaw::Linear
         }
         RawLaw::Sigmoid => {
             let why = "only law = \"table\" uses pressures and compliances";
             unused(l.pressures.is_some(), "layer.pressures", why)?;
             unused(l.compliances.is_some(), "layer.compliances", why)?;
-            let c0 = need(
-                l.compliance,
-                "layer.compliance",
-                "a sigmoid layer needs its zero-pressure compliance C0 (> 0)",
-            )?;
             let delta = need(
                 l.delta,
                 "layer.delta",
                 "law = \"sigmoid\" needs delta (0 <= delta <= 1)",
             )?;
             let p0 = need(l.p0, "layer.p0", "law = \"sigmoid\" needs p0 (> 0)")?;
-            (c0, ComplianceLaw::Sigmoid { delta, p0 })
+            ComplianceLaw::Sigmoid { delta, p0 }
         }
         RawLaw::Table => {
-            let why = "law = \"table\" takes its compliances from the table";
-            unused(l.compliance.is_some(), "layer.compliance", why)?;
+            if matches!(l.rheology, RawRheology::Maxwell | RawRheology::KelvinVoigt) {
+                unused(
+                    l.compliance.is_some(),
+                    "layer.compliance",
+                    "law = \"table\" takes its compliances from the table",
+                )?;
+            }
+            let why = "only law = \"sigmoid\" uses delta and p0";
             unused(l.delta.is_some(), "layer.delta", why)?;
             unused(l.p0.is_some(), "layer.p0", why)?;
             let pressures = need(
-                l.pressures,
+                l.pressures.clone(),
                 "layer.pressures",
                 "law = \"table\" needs pressures (starting at 0, increasing)",
             )?;
             let compliances = need(
-                l.compliances,
+                l.compliances.clone(),
                 "layer.compliances",
                 "law = \"table\" needs one compliance (>= 0) per pressure",
             )?;
-            let table = Table::new(pressures, compliances)?;
-            (table.compliances()[0], ComplianceLaw::Table(table))
+            ComplianceLaw::Table(Table::new(pressures, compliances)?)
         }
     };
+    let table_compliance = match &law {
+        ComplianceLaw::Table(t) => Some(t.compliances()[0]),
+        _ => None,
+    };
+    let rheology = rheology(&l, table_compliance)?;
     let integration = match l.integration {
         RawIntegration::Exact => Integration::Exact,
         RawIntegration::Secant => Integration::Secant,
     };
     Ok(Layer {
-        compliance,
-        relaxation_time,
+        rheology,
         law,
         integration,
     })
+}
+
+/// The keys a rheology preset takes, in case-file order.
+fn rheology_keys(r: RawRheology) -> (&'static str, &'static [&'static str]) {
+    match r {
+        RawRheology::Maxwell => ("maxwell", &["compliance", "relaxation_time"]),
+        RawRheology::KelvinVoigt => ("kelvin_voigt", &["compliance", "retardation_time"]),
+        RawRheology::Zener => (
+            "zener",
+            &["glassy_compliance", "compliance", "retardation_time"],
+        ),
+        RawRheology::Burgers => (
+            "burgers",
+            &[
+                "glassy_compliance",
+                "relaxation_time",
+                "compliance",
+                "retardation_time",
+            ],
+        ),
+        RawRheology::Prony => (
+            "prony",
+            &[
+                "glassy_compliance",
+                "branch_compliances",
+                "branch_times",
+                "viscosity",
+            ],
+        ),
+        RawRheology::RelaxationProny => (
+            "relaxation_prony",
+            &[
+                "equilibrium_stiffness",
+                "branch_stiffnesses",
+                "branch_times",
+            ],
+        ),
+        RawRheology::FractionalZener => (
+            "fractional_zener",
+            &[
+                "glassy_compliance",
+                "compliance",
+                "retardation_time",
+                "order",
+                "branch_count",
+            ],
+        ),
+    }
+}
+
+/// Default number of branches of a fractional Zener layer.
+const FRACTIONAL_BRANCHES: usize = 24;
+
+fn rheology(l: &RawLayer, table_compliance: Option<f64>) -> Result<Rheology> {
+    let (name, keys) = rheology_keys(l.rheology);
+    let present = [
+        ("compliance", l.compliance.is_some()),
+        ("relaxation_time", l.relaxation_time.is_some()),
+        ("glassy_compliance", l.glassy_compliance.is_some()),
+        ("retardation_time", l.retardation_time.is_some()),
+        ("branch_compliances", l.branch_compliances.is_some()),
+        ("branch_times", l.branch_times.is_some()),
+        ("viscosity", l.viscosity.is_some()),
+        ("equilibrium_stiffness", l.equilibrium_stiffness.is_some()),
+        ("branch_stiffnesses", l.branch_stiffnesses.is_some()),
+        ("order", l.order.is_some()),
+        ("branch_count", l.branch_count.is_some()),
+    ];
+    for (key, given) in present {
+        let why = format!("rheology = \"{name}\" takes only {}", keys.join(", "));
+        unused(given && !keys.contains(&key), &format!("layer.{key}"), &why)?;
+    }
+    // Maxwell and Kelvin–Voigt layers with a table law take their one compliance
+    // from the table, as the paper's layer always has.
+    let main_compliance = |what: &str| -> Result<f64> {
+        match table_compliance {
+            Some(c0) if matches!(l.rheology, RawRheology::Maxwell | RawRheology::KelvinVoigt) => {
+                unused(
+                    l.compliance.is_some(),
+                    "layer.compliance",
+                    "law = \"table\" takes its compliances from the table",
+                )?;
+                Ok(c0)
+            }
+            _ => need(
+                l.compliance,
+                "layer.compliance",
+                &format!("a {name} layer needs {what} (> 0)"),
+            ),
+        }
+    };
+    let time = |value: Option<f64>, key: &str, what: &str| {
+        need(
+            value,
+            &format!("layer.{key}"),
+            &format!("a {name} layer needs {what} (> 0)"),
+        )
+    };
+    let glassy = || {
+        need(
+            l.glassy_compliance,
+            "layer.glassy_compliance",
+            &format!("a {name} layer needs its glassy (instantaneous) compliance C_g"),
+        )
+    };
+    Ok(match l.rheology {
+        RawRheology::Maxwell => Rheology::Maxwell {
+            compliance: main_compliance("its compliance C0")?,
+            relaxation_time: need(
+                l.relaxation_time,
+                "layer.relaxation_time",
+                "a [layer] needs its relaxation time T (> 0)",
+            )?,
+        },
+        RawRheology::KelvinVoigt => Rheology::KelvinVoigt {
+            compliance: main_compliance("its compliance C1")?,
+            retardation_time: time(
+                l.retardation_time,
+                "retardation_time",
+                "its retardation time",
+            )?,
+        },
+        RawRheology::Zener => Rheology::Zener {
+            glassy_compliance: glassy()?,
+            compliance: main_compliance("the compliance C1 of its Kelvin–Voigt branch")?,
+            retardation_time: time(
+                l.retardation_time,
+                "retardation_time",
+                "its retardation time",
+            )?,
+        },
+        RawRheology::Burgers => Rheology::Burgers {
+            glassy_compliance: glassy()?,
+            relaxation_time: time(
+                l.relaxation_time,
+                "relaxation_time",
+                "the relaxation time T of its Maxwell element",
+            )?,
+            compliance: main_compliance("the compliance C1 of its Kelvin–Voigt branch")?,
+            retardation_time: time(
+                l.retardation_time,
+                "retardation_time",
+                "its retardation time",
+            )?,
+        },
+        RawRheology::Prony => {
+            let compliances = need(
+                l.branch_compliances.clone(),
+                "layer.branch_compliances",
+                "a prony layer needs the compliances of its Kelvin–Voigt branches (a list)",
+            )?;
+            let times = branch_times(l, compliances.len(), "branch_compliances")?;
+            Rheology::Prony {
+                glassy_compliance: glassy()?,
+                branches: compliances
+                    .into_iter()
+                    .zip(times)
+                    .map(|(compliance, time)| RetardationBranch { compliance, time })
+                    .collect(),
+                viscosity: l.viscosity,
+            }
+        }
+        RawRheology::RelaxationProny => {
+            let stiffnesses = need(
+                l.branch_stiffnesses.clone(),
+                "layer.branch_stiffnesses",
+                "a relaxation_prony layer needs the stiffnesses of its Maxwell branches (a list)",
+            )?;
+            let times = branch_times(l, stiffnesses.len(), "branch_stiffnesses")?;
+            Rheology::RelaxationProny {
+                equilibrium_stiffness: need(
+                    l.equilibrium_stiffness,
+                    "layer.equilibrium_stiffness",
+                    "a relaxation_prony layer needs its equilibrium stiffness K_inf (>= 0; 0 \
+                     for a layer that flows)",
+                )?,
+                branches: stiffnesses
+                    .into_iter()
+                    .zip(times)
+                    .map(|(stiffness, time)| RelaxationBranch { stiffness, time })
+                    .collect(),
+            }
+        }
+        RawRheology::FractionalZener => Rheology::FractionalZener {
+            glassy_compliance: glassy()?,
+            compliance: main_compliance("the compliance C1 of its retarded part")?,
+            retardation_time: time(
+                l.retardation_time,
+                "retardation_time",
+                "its retardation time",
+            )?,
+            order: need(
+                l.order,
+                "layer.order",
+                "a fractional_zener layer needs its order alpha (0 < alpha <= 1)",
+            )?,
+            branch_count: l.branch_count.unwrap_or(FRACTIONAL_BRANCHES),
+        },
+    })
+}
+
+/// `branch_times`, one per entry of the list `key`.
+fn branch_times(l: &RawLayer, n: usize, key: &str) -> Result<Vec<f64>> {
+    let times = need(
+        l.branch_times.clone(),
+        "layer.branch_times",
+        &format!("one time (> 0) per entry of layer.{key}"),
+    )?;
+    if times.len() != n {
+        return Err(Error::invalid(
+            "layer.branch_times",
+            format!("{} times for {n} branches", times.len()),
+            &format!("one time per entry of layer.{key}"),
+        ));
+    }
+    Ok(times)
 }
 
 fn stress_request(raw: RawStress) -> Result<StressRequest> {

@@ -97,15 +97,15 @@ fn paper_fig3_parses_into_the_hand_built_case() {
             young: 1.0,
             poisson: 0.3,
         }),
-        layer: Some(Layer {
-            compliance: 0.02,
-            relaxation_time: 1.0,
-            law: ComplianceLaw::Sigmoid {
+        layer: Some(Layer::maxwell(
+            0.02,
+            1.0,
+            ComplianceLaw::Sigmoid {
                 delta: 0.5,
                 p0: 0.001,
             },
-            integration: Integration::Exact,
-        }),
+            Integration::Exact,
+        )),
         loading: Loading {
             normal_load: 5e-6,
             velocity: Some(1e-3),
@@ -153,8 +153,13 @@ fn linear_layer_defaults_to_exact_integration_and_accepts_infinite_velocity() {
     let layer = file.case.layer.unwrap();
     assert_eq!(layer.law, ComplianceLaw::Linear);
     assert_eq!(layer.integration, Integration::Exact);
-    assert_eq!(layer.compliance, 0.1);
-    assert_eq!(layer.relaxation_time, 2.0);
+    assert_eq!(
+        layer.rheology,
+        Rheology::Maxwell {
+            compliance: 0.1,
+            relaxation_time: 2.0
+        }
+    );
     assert_eq!(file.case.loading.velocity, Some(f64::INFINITY));
 }
 
@@ -178,7 +183,7 @@ fn secant_integration_and_table_law() {
     assert_eq!(t.pressures(), &[0.0, 0.01, 0.02]);
     assert_eq!(t.compliances(), &[0.02, 0.015, 0.01]);
     // The table's first compliance is C0.
-    assert_eq!(layer.zero_pressure_compliance(), 0.02);
+    assert_eq!(layer.reference_compliance(), 0.02);
 }
 
 #[test]

@@ -59,7 +59,9 @@ pub use convolution::Parallelism;
 pub use error::{Error, Result};
 pub use grid::Grid;
 pub use kernel_cache::KernelCache;
-pub use layer::{ComplianceLaw, Integration, Layer};
+pub use layer::{
+    ComplianceLaw, CreepForm, Integration, Layer, RelaxationBranch, RetardationBranch, Rheology,
+};
 pub use problem::ContactProblem;
 pub use report::Report;
 pub use shape::{HeightMap, Slider};

@@ -118,6 +118,9 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
             let wb = apply_dense(&body, &p);
             let wl = layer.as_ref().map(|l| l.displacement(&p));
             let compliance = layer.as_ref().map(|l| l.response.compliance(&p));
+            let dissipated_force = layer
+                .as_ref()
+                .map_or(0.0, |l| l.response.dissipated_force(&p));
             return Ok(Solution {
                 grid: *grid,
                 body: problem.body,
@@ -128,6 +131,7 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
                 gap,
                 shape: f,
                 shape_slope: slope,
+                dissipated_force,
                 approach,
                 normal_load: load,
                 info: SolveInfo {

@@ -61,6 +61,9 @@ pub struct Solution {
     pub shape: Vec<f64>,
     /// Slope df/dx at cell centres.
     pub shape_slope: Vec<f64>,
+    /// The power dissipated in the layer divided by the sliding speed (0 without a
+    /// layer or at infinite speed): by energy balance, the tangential force.
+    pub dissipated_force: f64,
     /// Approach (penetration) D of the slider.
     pub approach: f64,
     /// Normal load Q.
@@ -98,6 +101,9 @@ pub struct Summary {
     pub friction_coefficient: f64,
     /// `Q_T = mu Q`, the force that opposes the sliding.
     pub tangential_force: f64,
+    /// `mu` from energy balance: the power dissipated in the layer over `Q V`
+    /// (an independent check of `friction_coefficient`; 0 without a layer).
+    pub dissipation_friction_coefficient: f64,
     /// Outer iterations.
     pub iterations: usize,
     /// Final relative residual.
@@ -128,6 +134,7 @@ impl Summary {
             self.moment,
             self.friction_coefficient,
             self.tangential_force,
+            self.dissipation_friction_coefficient,
             self.residual,
             self.cell_size,
         ]
@@ -184,6 +191,7 @@ impl Solution {
             moment,
             friction_coefficient: mu,
             tangential_force: mu * self.normal_load,
+            dissipation_friction_coefficient: self.dissipated_force / self.normal_load,
             iterations: self.info.iterations,
             residual: self.info.residual,
             nx: g.nx,

@@ -193,7 +193,10 @@ fn automatic_window_grows_until_it_holds_the_contact() {
         young: 1e-3,
         poisson: 0.3,
     });
-    case.layer.as_mut().unwrap().compliance = 20.0;
+    case.layer.as_mut().unwrap().rheology = Rheology::Maxwell {
+        compliance: 20.0,
+        relaxation_time: 1.0,
+    };
     let s = solve_to(&case, 1e-10);
     assert!(!s.grid.touches_edge(&s.pressure));
     assert!(s.info.windows >= 1);

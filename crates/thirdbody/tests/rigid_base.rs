@@ -283,12 +283,7 @@ fn oracle_problem() -> RigidBase {
 }
 
 fn layer(law: ComplianceLaw, integration: Integration) -> Layer {
-    Layer {
-        compliance: COMPLIANCE,
-        relaxation_time: RELAXATION_TIME,
-        law,
-        integration,
-    }
+    Layer::maxwell(COMPLIANCE, RELAXATION_TIME, law, integration)
 }
 
 fn rigid_base_case(layer: Layer, cells: [usize; 2]) -> Case {

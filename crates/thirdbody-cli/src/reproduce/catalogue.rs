@@ -31,21 +31,16 @@ const COMPLIANCE: f64 = 0.02;
 
 /// The sigmoid law of eq. 11, T = 1, exact integration.
 pub fn sigmoid(compliance: f64, delta: f64, p0: f64) -> Layer {
-    Layer {
+    Layer::maxwell(
         compliance,
-        relaxation_time: 1.0,
-        law: ComplianceLaw::Sigmoid { delta, p0 },
-        integration: Integration::Exact,
-    }
+        1.0,
+        ComplianceLaw::Sigmoid { delta, p0 },
+        Integration::Exact,
+    )
 }
 
 fn linear(compliance: f64) -> Layer {
-    Layer {
-        compliance,
-        relaxation_time: 1.0,
-        law: ComplianceLaw::Linear,
-        integration: Integration::Exact,
-    }
+    Layer::maxwell(compliance, 1.0, ComplianceLaw::Linear, Integration::Exact)
 }
 
 /// A sphere R = 1 over `layer` on `body`, automatic window of `cells` per side.
@@ -378,7 +373,7 @@ pub fn parameter_line<'a>(
         Parameter::of("E1/E2", coatings().map(|c| c.0)),
         Parameter::of("nu1", coatings().map(|c| c.1)),
         Parameter::of("h1'", coatings().map(|c| c.2)),
-        Parameter::of("C'", layers.clone().map(|l| l.compliance)),
+        Parameter::of("C'", layers.clone().map(|l| l.reference_compliance())),
     ];
     format!(
         "{}; {}",

@@ -104,7 +104,10 @@ pub fn fig3(
     files.table_csv("fig03.csv", &[L.x, L.y, L.pressure, L.compliance], &rows)?;
     let sum = s.summary();
     let c_min = c.iter().copied().fold(f64::INFINITY, f64::min);
-    let c0 = case.layer.as_ref().map_or(f64::NAN, |l| l.compliance);
+    let c0 = case
+        .layer
+        .as_ref()
+        .map_or(f64::NAN, |l| l.reference_compliance());
     rep.numbers.extend([
         number("max pressure p'", sum.max_pressure, None),
         number("x' of the max pressure", sum.max_pressure_x, None),

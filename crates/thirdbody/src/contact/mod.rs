@@ -428,13 +428,13 @@ fn finish(
     p.iter_mut().for_each(|v| *v *= scale);
     let mut wb = vec![0.0; n];
     problem.influence.apply(&p, &mut wb);
-    let (wl, compliance) = match &problem.layer {
+    let (wl, compliance, dissipated_force) = match &problem.layer {
         Some(l) => {
             let mut wl = vec![0.0; n];
             l.displacement(&p, &mut wl);
-            (Some(wl), Some(l.compliance(&p)))
+            (Some(wl), Some(l.compliance(&p)), l.dissipated_force(&p))
         }
-        None => (None, None),
+        None => (None, None, 0.0),
     };
     let gap: Vec<f64> = (0..n)
         .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + problem.shape[k] - report.approach)
@@ -454,6 +454,7 @@ fn finish(
         gap,
         shape: problem.shape.clone(),
         shape_slope: problem.slope.clone(),
+        dissipated_force,
         approach: report.approach,
         normal_load: load,
         info: SolveInfo {

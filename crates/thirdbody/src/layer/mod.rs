@@ -5,24 +5,28 @@
 //! Jacobian (applied, and solved row-wise as a preconditioner), whether `w3 = c p`
 //! exactly (then the contact problem is symmetric and conjugate gradients apply), the
 //! compliance field to report, and a diagnosis when the model has no unique solution.
-//! Each rheology is one implementation in its own file; [`Layer::on_grid`] is the one
-//! place that picks it. Today: the nonlinear Maxwell layer of the paper (eq. 2,
-//! [`maxwell`]). The pressure dependence `C[p]` is apart, in [`law`].
+//! Each rheology family is one implementation in its own file; [`Layer::on_grid`] is
+//! the one place that picks it. Today every preset ([`rheology`]: the paper's
+//! nonlinear Maxwell layer of eq. 2, Kelvin–Voigt, Zener, Burgers, Prony series,
+//! fractional Zener) reduces to one creep form, integrated by [`viscoelastic`]. The
+//! pressure dependence `C[p]` is apart, in [`law`].
 //!
 //! Conventions (docs/architecture.md): material enters the window at its largest x and
 //! moves in -x, so a layer's response is causal along each row from the leading edge;
 //! rows (fixed y) do not interact.
 
 pub mod law;
-pub mod maxwell;
+pub mod rheology;
+pub mod viscoelastic;
 
 pub use law::{ComplianceLaw, LawValue, Table};
-pub use maxwell::{MaxwellJacobian, MaxwellRows};
+pub use rheology::{CreepForm, Flow, RelaxationBranch, RetardationBranch, Rheology};
+pub use viscoelastic::{ViscoelasticJacobian, ViscoelasticRows};
 
 use crate::error::{require_positive, Error, Result};
 use crate::grid::Grid;
 
-/// How eq. 2 is integrated over a cell (see [`maxwell`]).
+/// How the elastic parts' forcing is integrated over a cell (see [`viscoelastic`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Integration {
     /// Exact integration: the instantaneous part is `G(p)`.
@@ -35,13 +39,11 @@ pub enum Integration {
 /// A viscoelastic third-body layer, as a case describes it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Layer {
-    /// Compliance at zero pressure, C0 (displacement per pressure).
-    pub compliance: f64,
-    /// Relaxation time T.
-    pub relaxation_time: f64,
-    /// Pressure dependence of the compliance.
+    /// The rheology: its parts, their compliances at zero pressure and their times.
+    pub rheology: Rheology,
+    /// Pressure dependence: every part's compliance is scaled by `C[p] / C[0]`.
     pub law: ComplianceLaw,
-    /// Integration of eq. 2 over a cell.
+    /// Integration of the elastic parts over a cell.
     pub integration: Integration,
 }
 
@@ -62,6 +64,9 @@ pub trait LayerResponse: std::fmt::Debug + Send + Sync {
     fn displacement(&self, p: &[f64], w3: &mut [f64]);
     /// The Jacobian `dw3/dp` at `p`, for Newton steps.
     fn linearise(&self, p: &[f64]) -> Box<dyn LayerLinearisation>;
+    /// The power dissipated in the layer divided by the sliding speed, at `p`
+    /// (the tangential force that energy balance predicts; 0 for an elastic layer).
+    fn dissipated_force(&self, p: &[f64]) -> f64;
     /// A cell's own `dw3/dp` at zero pressure (sets the solvers' pressure scale).
     fn zero_pressure_self_compliance(&self) -> f64;
     /// `Some(c)` when `w3 = c p` exactly (a creep-free linear spring bed): the contact
@@ -110,6 +115,9 @@ impl LayerResponse for NoLayer {
     fn compliance(&self, p: &[f64]) -> Vec<f64> {
         vec![0.0; p.len()]
     }
+    fn dissipated_force(&self, _p: &[f64]) -> f64 {
+        0.0
+    }
 }
 
 impl LayerLinearisation for NoLayer {
@@ -124,11 +132,27 @@ impl LayerLinearisation for NoLayer {
 }
 
 impl Layer {
-    pub(crate) fn validate(&self) -> Result<()> {
-        if !matches!(self.law, ComplianceLaw::Table(_)) {
-            require_positive("layer.compliance", self.compliance)?;
+    /// The paper's Maxwell layer (eq. 2) of compliance `compliance` at zero
+    /// pressure (for a table law, its first compliance) and relaxation time
+    /// `relaxation_time`.
+    pub fn maxwell(
+        compliance: f64,
+        relaxation_time: f64,
+        law: ComplianceLaw,
+        integration: Integration,
+    ) -> Self {
+        Layer {
+            rheology: Rheology::Maxwell {
+                compliance,
+                relaxation_time,
+            },
+            law,
+            integration,
         }
-        require_positive("layer.relaxation_time", self.relaxation_time)?;
+    }
+
+    pub(crate) fn validate(&self) -> Result<()> {
+        self.rheology.validate()?;
         if let ComplianceLaw::Sigmoid { delta, p0 } = self.law {
             if !(0.0..=1.0).contains(&delta) {
                 return Err(Error::invalid("layer.delta", delta, "0 <= delta <= 1"));
@@ -139,9 +163,9 @@ impl Layer {
     }
 
     /// The layer's response on `grid`'s cells at sliding velocity `velocity` (may be
-    /// infinite): the one place where a case's layer picks its rheology.
+    /// infinite): the one place where a case's layer picks its implementation.
     pub fn on_grid(&self, grid: &Grid, velocity: f64) -> Box<dyn LayerResponse> {
-        Box::new(MaxwellRows::new(
+        Box::new(ViscoelasticRows::new(
             self.clone(),
             grid.nx,
             grid.ny,
@@ -150,41 +174,40 @@ impl Layer {
         ))
     }
 
-    /// The linear layer the automatic window and the initial guesses assume.
+    /// The linear layer the automatic window and the initial guesses assume: the
+    /// relaxed compliance (the largest contact), creeping at the rate of the flow.
     pub fn estimate(&self) -> LayerEstimate {
+        let form = self.rheology.creep_form();
+        let compliance = form.relaxed();
         LayerEstimate {
-            compliance: self.zero_pressure_compliance(),
-            relaxation_time: self.relaxation_time,
+            compliance,
+            // c0 / T of the estimate is the flow's C_v / T (for the Maxwell layer
+            // c0 = C_v, and the ratio is exactly 1).
+            relaxation_time: form
+                .flow
+                .map_or(f64::INFINITY, |f| f.time * (compliance / f.compliance)),
         }
     }
 
-    /// Compliance at zero pressure.
-    pub fn zero_pressure_compliance(&self) -> f64 {
-        match &self.law {
-            ComplianceLaw::Table(t) => t.compliances()[0],
-            _ => self.compliance,
+    /// The compliance `C[0]` the law is evaluated with: a table's first compliance;
+    /// else the Maxwell or Kelvin–Voigt compliance (so that the paper's layer is
+    /// computed exactly as eq. 8 writes it), 1 for the other presets (whose parts
+    /// carry their own compliances).
+    pub fn reference_compliance(&self) -> f64 {
+        match (&self.law, &self.rheology) {
+            (ComplianceLaw::Table(t), _) => t.compliances()[0],
+            (
+                _,
+                Rheology::Maxwell { compliance, .. } | Rheology::KelvinVoigt { compliance, .. },
+            ) => *compliance,
+            _ => 1.0,
         }
     }
 
-    /// The compliance law at pressure p (continued with C0 below zero).
+    /// The compliance law at pressure p for the reference compliance (continued
+    /// with `C[0]` below zero).
     pub fn law_at(&self, p: f64) -> LawValue {
-        self.law.at(self.zero_pressure_compliance(), p)
-    }
-
-    /// Instantaneous displacement of a cell and its derivative: `G(p)` (exact) or
-    /// `C[p] p` (secant).
-    pub fn instantaneous(&self, p: f64) -> (f64, f64) {
-        let l = self.law_at(p);
-        match self.integration {
-            Integration::Exact => (l.integral, l.compliance),
-            Integration::Secant => (l.compliance * p, l.compliance + l.slope * p.max(0.0)),
-        }
-    }
-
-    /// Creep rate density `C[p] p` and its derivative.
-    pub fn creep(&self, p: f64) -> (f64, f64) {
-        let l = self.law_at(p);
-        (l.compliance * p, l.compliance + l.slope * p.max(0.0))
+        self.law.at(self.reference_compliance(), p)
     }
 }
 
@@ -194,11 +217,6 @@ pub(crate) mod tests {
 
     /// The paper's sigmoid layer (C0 = 0.02, T = 1) for the layer modules' tests.
     pub(crate) fn sigmoid(delta: f64, p0: f64, integration: Integration) -> Layer {
-        Layer {
-            compliance: 0.02,
-            relaxation_time: 1.0,
-            law: ComplianceLaw::Sigmoid { delta, p0 },
-            integration,
-        }
+        Layer::maxwell(0.02, 1.0, ComplianceLaw::Sigmoid { delta, p0 }, integration)
     }
 }

@@ -37,12 +37,7 @@ pub fn layered(
     integration: Integration,
 ) -> Case {
     let mut c = sphere(load, cells);
-    c.layer = Some(Layer {
-        compliance: c0,
-        relaxation_time: 1.0,
-        law,
-        integration,
-    });
+    c.layer = Some(Layer::maxwell(c0, 1.0, law, integration));
     c.loading.velocity = Some(velocity);
     c
 }
