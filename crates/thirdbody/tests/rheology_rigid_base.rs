@@ -1,0 +1,163 @@
+//! Kelvin–Voigt and Zener layers on a (nearly) rigid base against the semi-analytic
+//! per-row solution of tests/common/rigid_base_viscoelastic.rs (derived there from
+//! the layer equations; it shares no code with the solver).
+
+mod common;
+
+use common::rigid_base_viscoelastic::{kelvin_voigt, zener, Reference};
+use thirdbody::*;
+
+const R: f64 = 1.0;
+
+fn case(rheology: Rheology, load: f64, velocity: f64, cells: [usize; 2], r: &Reference) -> Case {
+    // A window around the reference contact with a margin of 10% of its length.
+    let (x0, x1) = (r.x_min, r.x_max);
+    let margin = 0.1 * (x1 - x0);
+    let half = (0.5 * (x1 - x0) + margin).max(1.1 * r.y_max);
+    let (half_x, half_y) = (half, half * cells[1] as f64 / cells[0] as f64);
+    Case {
+        slider: Slider::Sphere { radius: R },
+        body: Body::Homogeneous(Elastic {
+            young: 1e6,
+            poisson: 0.3,
+        }),
+        layer: Some(Layer {
+            rheology,
+            law: ComplianceLaw::Linear,
+            integration: Integration::Exact,
+        }),
+        loading: Loading {
+            normal_load: load,
+            velocity: Some(velocity),
+        },
+        grid: GridSpec {
+            cells,
+            half_width: Some([half_x, half_y]),
+            centre: Some([0.5 * (x0 + x1), 0.0]),
+        },
+        units: Units::Dimensionless,
+    }
+}
+
+/// Relative errors (p_max, mu, D, leading edge sqrt(2 R D), trailing edge) of one solve.
+fn errors(case: &Case, r: &Reference) -> [f64; 5] {
+    let params = SolverParams {
+        tolerance: 1e-12,
+        ..SolverParams::default()
+    };
+    let s = solve(case, &params).unwrap();
+    let sum = s.summary();
+    let g = &s.grid;
+    // Trailing edge of the centre rows: extrapolate p linearly to zero from the last
+    // two loaded cells of the row nearest y = 0 (both rows next to it by symmetry).
+    let j = g.ny / 2;
+    let row = &s.pressure[j * g.nx..(j + 1) * g.nx];
+    let first = row.iter().position(|&p| p > 0.0).unwrap();
+    let (p1, p2) = (row[first], row[first + 1]);
+    let (x1, x2) = (g.x(first), g.x(first + 1));
+    let trailing = x1 - p1 * (x2 - x1) / (p2 - p1);
+    let leading = (2.0 * R * sum.penetration).sqrt();
+
+    let rel = |a: f64, b: f64| (a - b) / b;
+    [
+        rel(sum.max_pressure, r.max_pressure),
+        rel(sum.friction_coefficient, r.friction_coefficient),
+        rel(sum.penetration, r.approach),
+        rel(leading, r.x_max),
+        (trailing - r.x_min) / (r.x_max - r.x_min),
+    ]
+}
+
+fn zener_layer(glassy: f64, branch: f64) -> Rheology {
+    Rheology::Zener {
+        glassy_compliance: glassy,
+        compliance: branch,
+        retardation_time: 1.0,
+    }
+}
+
+fn kelvin_voigt_layer(compliance: f64) -> Rheology {
+    Rheology::KelvinVoigt {
+        compliance,
+        retardation_time: 1.0,
+    }
+}
+
+/// Solves on an n x n window and asserts the errors listed in `checked` (indices
+/// into [p_max, mu, D, leading edge, trailing edge]) are within `tolerance`.
+fn check(
+    name: &str,
+    rheology: Rheology,
+    q: f64,
+    v: f64,
+    r: &Reference,
+    n: usize,
+    checked: &[usize],
+) -> [f64; 5] {
+    let e = errors(&case(rheology, q, v, [n, n], r), r);
+    eprintln!(
+        "{name} {n}^2: p_max {:+.2e}, mu {:+.2e}, D {:+.2e}, leading edge {:+.2e}, \
+         trailing edge {:+.2e} (of the contact length)",
+        e[0], e[1], e[2], e[3], e[4]
+    );
+    for &k in checked {
+        assert!(
+            e[k].abs() < 1e-3,
+            "{name} {n}^2: error {k} is {:+.2e}",
+            e[k]
+        );
+    }
+    e
+}
+
+const ALL: [usize; 5] = [0, 1, 2, 3, 4];
+
+#[test]
+fn zener_layers_match_the_row_solution_to_1e_3() {
+    // The suggested cases of the reference (L / b0 from 0.3 to 1.4), R = tau = 1.
+    for (name, cg, c1, q, v) in [
+        ("Z1", 0.01, 0.01, 2e-5, 0.01),
+        ("Z2", 0.01, 0.01, 2e-5, 0.03),
+        ("Z3", 0.01, 0.01, 1e-4, 0.03),
+        ("Z4", 0.005, 0.015, 2e-5, 0.01),
+    ] {
+        let r = zener(R, q, cg, c1, 1.0, v);
+        check(name, zener_layer(cg, c1), q, v, &r, 128, &ALL);
+    }
+}
+
+#[test]
+fn kelvin_voigt_layer_with_interior_maximum_matches_the_row_solution_to_1e_3() {
+    // K1: creep length L = 0.07 b0, the pressure maximum at x = L inside the
+    // contact; mu converges as h^2 and needs h < L / 20 for 1e-3.
+    let (q, v) = (1e-4, 0.003);
+    let r = kelvin_voigt(R, q, 0.02, 1.0, v);
+    let coarse = check("K1", kelvin_voigt_layer(0.02), q, v, &r, 256, &[0, 2, 3, 4]);
+    let fine = check("K1", kelvin_voigt_layer(0.02), q, v, &r, 512, &ALL);
+    // Second order: the mu error falls by about 4 when h halves.
+    assert!(fine[1].abs() < 0.35 * coarse[1].abs());
+}
+
+#[test]
+fn kelvin_voigt_layer_with_leading_edge_jump_matches_the_row_solution() {
+    // K2: L = 1.3 b0, so the largest pressure is the jump p(b) = L b / (R C) at the
+    // leading edge, which cuts through cells: a cell's pressure there depends on
+    // where the edge falls in it (up to about 1.8 times the jump on some rows), so
+    // p_max is not comparable pointwise. mu, D and both edges converge; the centre
+    // row, whose edge falls near a cell edge, stays within 10% of the jump.
+    let (q, v) = (2e-5, 0.03);
+    let r = kelvin_voigt(R, q, 0.02, 1.0, v);
+    let c = case(kelvin_voigt_layer(0.02), q, v, [128, 128], &r);
+    check("K2", kelvin_voigt_layer(0.02), q, v, &r, 128, &[1, 2, 3, 4]);
+    let s = solve(&c, &SolverParams::default()).unwrap();
+    let g = &s.grid;
+    let j = g.ny / 2;
+    let row_max = s.pressure[j * g.nx..(j + 1) * g.nx]
+        .iter()
+        .fold(0.0f64, |m, &p| m.max(p));
+    assert!(
+        (row_max / r.max_pressure - 1.0).abs() < 0.1,
+        "{row_max} {}",
+        r.max_pressure
+    );
+}
