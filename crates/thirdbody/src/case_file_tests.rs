@@ -521,3 +521,163 @@ fn bad_stress_requests_name_the_key() {
         error_naming(&stress(lines), parts);
     }
 }
+
+/// FIG3 with its `[layer]` section replaced by `layer` (lines of keys).
+fn with_layer(layer: &str) -> String {
+    let start = FIG3.find("[layer]").unwrap();
+    let end = FIG3.find("[loading]").unwrap();
+    format!("{}[layer]\n{layer}\n\n{}", &FIG3[..start], &FIG3[end..])
+}
+
+fn layer_of(text: &str) -> Layer {
+    parse(text).unwrap().case.layer.unwrap()
+}
+
+#[test]
+fn every_rheology_preset_parses_into_its_parameters() {
+    let kv = layer_of(&with_layer(
+        "rheology = \"kelvin_voigt\"\ncompliance = 0.02\nretardation_time = 3.0",
+    ));
+    assert_eq!(
+        kv.rheology,
+        Rheology::KelvinVoigt {
+            compliance: 0.02,
+            retardation_time: 3.0
+        }
+    );
+    let z = layer_of(&with_layer(
+        "rheology = \"zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+         retardation_time = 3.0\nlaw = \"sigmoid\"\ndelta = 0.5\np0 = 0.001",
+    ));
+    assert_eq!(
+        z.rheology,
+        Rheology::Zener {
+            glassy_compliance: 0.01,
+            compliance: 0.02,
+            retardation_time: 3.0
+        }
+    );
+    assert_eq!(
+        z.law,
+        ComplianceLaw::Sigmoid {
+            delta: 0.5,
+            p0: 0.001
+        }
+    );
+    let b = layer_of(&with_layer(
+        "rheology = \"burgers\"\nglassy_compliance = 0.01\nrelaxation_time = 5\n\
+         compliance = 0.02\nretardation_time = 3.0",
+    ));
+    assert_eq!(b.rheology.creep_form().flow.unwrap().time, 5.0);
+    let p = layer_of(&with_layer(
+        "rheology = \"prony\"\nglassy_compliance = 0.0\nbranch_compliances = [0.01, 0.02]\n\
+         branch_times = [0.1, 10]\nviscosity = 50.0",
+    ));
+    let form = p.rheology.creep_form();
+    assert_eq!(form.branches.len(), 2);
+    assert_eq!(form.branches[1].time, 10.0);
+    assert_eq!(form.flow.unwrap().time, 50.0);
+    let r = layer_of(&with_layer(
+        "rheology = \"relaxation_prony\"\nequilibrium_stiffness = 0.0\n\
+         branch_stiffnesses = [100.0]\nbranch_times = [2.0]",
+    ));
+    // One Maxwell branch and no equilibrium stiffness: a Maxwell fluid, C_g = 1/K,
+    // eta = K rho.
+    let form = r.rheology.creep_form();
+    assert!(form.branches.is_empty());
+    assert!((form.glassy - 0.01).abs() < 1e-15);
+    assert!((form.flow.unwrap().time - 200.0).abs() < 1e-12);
+    let f = layer_of(&with_layer(
+        "rheology = \"fractional_zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+         retardation_time = 3.0\norder = 0.5",
+    ));
+    assert_eq!(f.rheology.creep_form().branches.len(), 24);
+    // Maxwell is the default and the table law gives a Kelvin–Voigt layer its
+    // compliance.
+    let t = layer_of(&with_layer(
+        "rheology = \"kelvin_voigt\"\nretardation_time = 1.0\nlaw = \"table\"\n\
+         pressures = [0.0, 0.01]\ncompliances = [0.03, 0.02]",
+    ));
+    assert_eq!(t.reference_compliance(), 0.03);
+    assert_eq!(
+        t.rheology,
+        Rheology::KelvinVoigt {
+            compliance: 0.03,
+            retardation_time: 1.0
+        }
+    );
+}
+
+#[test]
+fn bad_rheology_parameters_are_errors_naming_the_key() {
+    // A preset given a key it does not use.
+    let e = error_naming(
+        &with_layer("rheology = \"kelvin_voigt\"\ncompliance = 0.02\nretardation_time = 1\nrelaxation_time = 1"),
+        &["layer.relaxation_time", "kelvin_voigt", "retardation_time"],
+    );
+    assert!(matches!(e, Error::UnusedField { .. }), "{e:?}");
+    error_naming(
+        &with_layer("compliance = 0.02\nrelaxation_time = 1\nglassy_compliance = 0.01"),
+        &["layer.glassy_compliance", "maxwell"],
+    );
+    // Missing keys.
+    error_naming(
+        &with_layer("rheology = \"zener\"\ncompliance = 0.02\nretardation_time = 1"),
+        &["layer.glassy_compliance"],
+    );
+    error_naming(
+        &with_layer("rheology = \"prony\"\nglassy_compliance = 0.01\nbranch_compliances = [0.01]"),
+        &["layer.branch_times"],
+    );
+    // Zero or negative times, empty or mismatched lists.
+    error_naming(
+        &with_layer("rheology = \"kelvin_voigt\"\ncompliance = 0.02\nretardation_time = 0"),
+        &["layer.retardation_time", "> 0"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"prony\"\nglassy_compliance = 0.01\nbranch_compliances = [0.01, 0.02]\n\
+             branch_times = [1.0, -2.0]",
+        ),
+        &["layer.branch_times[1]", "> 0"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"prony\"\nglassy_compliance = 0.01\nbranch_compliances = []\n\
+             branch_times = []",
+        ),
+        &["layer.branch_compliances", "from 1 to"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"prony\"\nglassy_compliance = 0.01\nbranch_compliances = [0.01]\n\
+             branch_times = [1.0, 2.0]",
+        ),
+        &["layer.branch_times", "one time per entry"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"prony\"\nglassy_compliance = -0.01\nbranch_compliances = [0.01]\n\
+             branch_times = [1.0]",
+        ),
+        &["layer.glassy_compliance", ">= 0"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"fractional_zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             retardation_time = 3.0\norder = 1.5",
+        ),
+        &["layer.order", "0 < order <= 1"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"fractional_zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             retardation_time = 3.0\norder = 0.5\nbranch_count = 1",
+        ),
+        &["layer.branch_count", "from 2"],
+    );
+    error_naming(
+        &with_layer("rheology = \"plastic\"\ncompliance = 0.02"),
+        &["rheology", "kelvin_voigt"],
+    );
+}

@@ -51,10 +51,16 @@ pub const MAX_CONTACT_FRACTION: f64 = 0.1;
 /// Largest approach D as a fraction of R (for Hertz, a/R = 0.1 means D/R = 0.01).
 pub const MAX_APPROACH_FRACTION: f64 = 0.01;
 
+/// Relative difference between `friction_coefficient` and
+/// `dissipation_friction_coefficient` above which a result carries a warning.
+pub const MAX_ENERGY_IMBALANCE: f64 = 0.01;
+
 /// Sentences saying where `solution` of `case` lies outside the model's
 /// assumptions: a contact or an approach that is not small against the slider's
-/// radius, or a friction coefficient above 1 (the small-slope hysteresis friction of
-/// paper eq. 12 is then meaningless).
+/// radius, a friction coefficient above 1 (the small-slope hysteresis friction of
+/// paper eq. 12 is then meaningless), or friction and dissipated power that
+/// disagree by more than [`MAX_ENERGY_IMBALANCE`] (the grid does not resolve the
+/// layer).
 pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
     let s = solution.summary();
     let r = case.slider.equivalent_radius();
@@ -88,6 +94,17 @@ pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
             "mu = {:.3e} exceeds 1: the hysteresis friction of paper eq. 12 assumes small \
              slopes, which such a contact does not have",
             s.friction_coefficient
+        ));
+    }
+    let (mu, dissipated) = (s.friction_coefficient, s.dissipation_friction_coefficient);
+    let imbalance = (dissipated - mu).abs() / mu.abs().max(dissipated.abs());
+    if case.layer.is_some() && imbalance > MAX_ENERGY_IMBALANCE {
+        out.push(format!(
+            "the energy balance is off by {:.1} %: mu = {mu:.4e} from the slider's slope, \
+             {dissipated:.4e} from the power dissipated in the layer; the grid does not \
+             resolve the layer's creep (cells longer than V T or V tau, or too few cells \
+             across the contact): use more cells or a smaller window",
+            100.0 * imbalance
         ));
     }
     out

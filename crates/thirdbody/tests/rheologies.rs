@@ -347,3 +347,24 @@ fn every_preset_agrees_with_the_dense_reference() {
         }
     }
 }
+
+#[test]
+fn an_unresolved_creep_length_is_flagged_by_the_energy_balance() {
+    // A Kelvin–Voigt layer whose creep length V tau = 1e-4 is far below the cell
+    // (about 3e-3): friction and dissipation disagree, and the report says so.
+    let rheology = Rheology::KelvinVoigt {
+        compliance: 0.02,
+        retardation_time: 1.0,
+    };
+    let coarse = with_layer(rheology.clone(), ComplianceLaw::Linear, 1e-4, 48);
+    let s = solve_to(&coarse, 1e-12);
+    let w = thirdbody::report::model_warnings(&coarse, &s);
+    assert!(
+        w.iter().any(|m| m.contains("energy balance is off")),
+        "{w:?}"
+    );
+    let resolved = with_layer(rheology, ComplianceLaw::Linear, 1e-2, 96);
+    let s = solve_to(&resolved, 1e-12);
+    let w = thirdbody::report::model_warnings(&resolved, &s);
+    assert!(w.is_empty(), "{w:?}");
+}

@@ -276,14 +276,26 @@ fn flatten(table: &Table, prefix: &str) -> Vec<(String, Value)> {
     out
 }
 
-/// The value at a dotted key, if present.
+/// A key part `name[k]`: the name and the list index.
+fn indexed(part: &str) -> Option<(&str, usize)> {
+    let (name, rest) = part.split_once('[')?;
+    let k = rest.strip_suffix(']')?.parse().ok()?;
+    Some((name, k))
+}
+
+/// The value at a dotted key, if present (`layer.branch_times[0]`: an entry of a
+/// list).
 pub fn get<'a>(table: &'a Table, key: &str) -> Option<&'a Value> {
-    let mut parts = key.split('.');
-    let mut value = table.get(parts.next()?)?;
-    for part in parts {
-        value = value.as_table()?.get(part)?;
+    let parts: Vec<&str> = key.split('.').collect();
+    let (last, sections) = parts.split_last()?;
+    let mut t = table;
+    for part in sections {
+        t = t.get(*part)?.as_table()?;
     }
-    Some(value)
+    match indexed(last) {
+        Some((name, k)) => t.get(name)?.as_array()?.get(k),
+        None => t.get(*last),
+    }
 }
 
 /// Sets or removes the value at a dotted key, creating sections as needed.
@@ -303,6 +315,26 @@ pub fn apply(table: &mut Table, key: &str, value: &KeyValue) -> Result<(), Strin
                     parts[..=k].join(".")
                 ))
             }
+        };
+    }
+    if let Some((name, k)) = indexed(last) {
+        let len = t.get(name).and_then(Value::as_array).map(Vec::len);
+        let Some(Value::Array(list)) = t.get_mut(name).filter(|_| len.is_some_and(|n| k < n))
+        else {
+            return Err(format!(
+                "{key} names entry {k} of the list {name}, which {}",
+                match len {
+                    Some(n) => format!("has {n} entries (counted from 0)"),
+                    None => "the case does not have".to_string(),
+                }
+            ));
+        };
+        return match value {
+            KeyValue::Set(v) => {
+                list[k] = v.clone();
+                Ok(())
+            }
+            KeyValue::Remove => Err(format!("{key}: an entry of a list cannot be removed")),
         };
     }
     match value {
@@ -456,6 +488,22 @@ cells = [64, 64]
         let mut t: Table = toml::from_str(BASE).unwrap();
         apply(&mut t, "layer.p0", &KeyValue::Remove).unwrap();
         assert!(get(&t, "layer.p0").is_none());
+        // An entry of a list.
+        let mut l: Table = toml::from_str("[layer]\nbranch_times = [1.0, 2.0]").unwrap();
+        apply(
+            &mut l,
+            "layer.branch_times[1]",
+            &KeyValue::Set(Value::Float(5.0)),
+        )
+        .unwrap();
+        assert_eq!(get(&l, "layer.branch_times[1]"), Some(&Value::Float(5.0)));
+        assert_eq!(get(&l, "layer.branch_times[0]"), Some(&Value::Float(1.0)));
+        let e = apply(
+            &mut l,
+            "layer.branch_times[2]",
+            &KeyValue::Set(Value::Float(5.0)),
+        );
+        assert!(e.unwrap_err().contains("has 2 entries"));
         apply(
             &mut t,
             "grid.half_width",
