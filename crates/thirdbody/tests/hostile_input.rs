@@ -137,7 +137,10 @@ fn results_outside_the_model_carry_warnings() {
             .unwrap()
             .case
     };
-    let inside = parse(&text);
+    // On 64^2 (32^2 does not resolve the creep: the energy balance is off by more
+    // than 1%,
+    // which is itself a warning).
+    let inside = parse(&text.replace("cells = [32, 32]", "cells = [64, 64]"));
     let s = solve(&inside, &SolverParams::default()).unwrap();
     assert!(thirdbody::report::model_warnings(&inside, &s).is_empty());
     let outside = parse(&text.replace("velocity = 1e-3", "velocity = 1e-30"));
@@ -147,5 +150,8 @@ fn results_outside_the_model_carry_warnings() {
         assert!(w.contains(part), "{w}");
     }
     let report = thirdbody::Report::new(&outside, &s, 0.0, None);
-    assert_eq!(report.warnings.len(), 3);
+    assert_eq!(
+        report.warnings,
+        thirdbody::report::model_warnings(&outside, &s)
+    );
 }
