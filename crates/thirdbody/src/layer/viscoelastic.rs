@@ -53,6 +53,25 @@
 use super::rheology::{CreepForm, Flow};
 use super::{ComplianceLaw, Integration, Layer, LayerLinearisation, LayerResponse};
 
+/// `sum_k u_k v_k` with four partial sums, so that the additions of a long branch
+/// list overlap instead of waiting on each other.
+fn dot(u: &[f64], v: &[f64]) -> f64 {
+    let mut lanes = [0.0; 4];
+    let (uc, vc) = (u.chunks_exact(4), v.chunks_exact(4));
+    let tail: f64 = uc
+        .remainder()
+        .iter()
+        .zip(vc.remainder())
+        .map(|(a, b)| a * b)
+        .sum();
+    for (a, b) in uc.zip(vc) {
+        for j in 0..4 {
+            lanes[j] += a[j] * b[j];
+        }
+    }
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+}
+
 /// Fraction of the full upwind correction applied (module docs).
 const UPWIND: f64 = 0.1;
 
@@ -85,8 +104,10 @@ pub struct ViscoelasticRows {
     /// `(C_v / C[0]) h / (V T)`: flow per cell of path, 0 for no flow or infinite V.
     flow_per_cell: f64,
     branches: Vec<BranchStep>,
-    /// `sum_k (b_k - a_k) C_k / C[0]`: the upwind correction's weight.
+    /// `kappa s sum_k (b_k - a_k) C_k / C[0]`: the upwind correction's weight.
     upwind: f64,
+    /// `sum_k (1 - b_k) C_k / C[0]`: the branches' own response over half a cell.
+    branch_own: f64,
 }
 
 impl ViscoelasticRows {
@@ -131,6 +152,7 @@ impl ViscoelasticRows {
                 .sum::<f64>();
         ViscoelasticRows {
             upwind,
+            branch_own,
             glassy_scale,
             layer,
             nx,
@@ -228,10 +250,7 @@ impl ViscoelasticRows {
             let (_, dq) = self.creep(pk);
             flow_slope[k] = self.flow_per_cell * dq;
             forcing_slope[k] = df;
-            let retarded: f64 = self
-                .branches
-                .iter()
-                .fold(0.0, |s, b| s + b.take_half * b.scale * df);
+            let retarded = self.branch_own * df;
             diagonal[k] =
                 self.glassy_scale * df + 0.5 * flow_slope[k] + retarded + self.upwind * df;
         }
@@ -241,7 +260,13 @@ impl ViscoelasticRows {
             diagonal,
             flow_slope,
             forcing_slope,
-            branches: self.branches.clone(),
+            keep_half: self.branches.iter().map(|b| b.keep_half).collect(),
+            keep_full: self.branches.iter().map(|b| b.keep_full).collect(),
+            take_full_scaled: self
+                .branches
+                .iter()
+                .map(|b| b.take_full * b.scale)
+                .collect(),
         }
     }
 
@@ -268,16 +293,35 @@ pub struct ViscoelasticJacobian {
     pub flow_slope: Vec<f64>,
     /// `dF/dp` of the elastic parts' forcing.
     pub forcing_slope: Vec<f64>,
-    branches: Vec<BranchStep>,
+    /// Per branch (contiguous, for the inner loops): `b`, `a`, `(1 - a) C_k / C[0]`.
+    keep_half: Vec<f64>,
+    keep_full: Vec<f64>,
+    take_full_scaled: Vec<f64>,
     /// The upwind correction's weight: `J_i,i+1` has `- upwind dF/dp_{i+1}`.
     upwind: f64,
 }
 
 impl ViscoelasticJacobian {
+    /// `sum_k b_k e_k`: what the branches carry into a cell's centre.
+    fn entering(&self, state: &[f64]) -> f64 {
+        dot(&self.keep_half, state)
+    }
+
+    /// Carries the branch states across a cell whose forcing changed by `df`.
+    fn advance(&self, state: &mut [f64], df: f64) {
+        for ((e, a), t) in state
+            .iter_mut()
+            .zip(&self.keep_full)
+            .zip(&self.take_full_scaled)
+        {
+            *e = a * *e + t * df;
+        }
+    }
+
     /// `out = J dp`.
     pub fn apply(&self, dp: &[f64], out: &mut [f64]) {
         let nx = self.nx;
-        let mut state = vec![0.0; self.branches.len()];
+        let mut state = vec![0.0; self.keep_half.len()];
         for (r, (drow, orow)) in dp
             .chunks_exact(nx)
             .zip(out.chunks_exact_mut(nx))
@@ -288,14 +332,19 @@ impl ViscoelasticJacobian {
             let fslope = &self.forcing_slope[r * nx..(r + 1) * nx];
             let mut upstream = 0.0;
             let mut upstream_forcing = 0.0;
+            // While nothing has entered the branches, they carry nothing.
+            let mut live = false;
             state.fill(0.0);
             for i in (0..nx).rev() {
-                let mut entering = 0.0;
                 let df = fslope[i] * drow[i];
-                for (b, e) in self.branches.iter().zip(state.iter_mut()) {
-                    entering += b.keep_half * *e;
-                    *e = b.keep_full * *e + b.take_full * b.scale * df;
-                }
+                live |= df != 0.0;
+                let entering = if live {
+                    let e = self.entering(&state);
+                    self.advance(&mut state, df);
+                    e
+                } else {
+                    0.0
+                };
                 orow[i] = diag[i] * drow[i] + upstream + entering - self.upwind * upstream_forcing;
                 upstream += slope[i] * drow[i];
                 upstream_forcing = df;
@@ -309,19 +358,16 @@ impl ViscoelasticJacobian {
     /// replaced by `extra_diagonal` (this is a preconditioner, not an exact solve).
     pub fn solve_restricted(&self, extra_diagonal: f64, active: &[bool], r: &[f64], y: &mut [f64]) {
         let nx = self.nx;
-        let mut state = vec![0.0; self.branches.len()];
+        let mut state = vec![0.0; self.keep_half.len()];
         for row in 0..r.len() / nx {
             let base = row * nx;
             let mut upstream = 0.0;
             let mut upstream_forcing = 0.0;
+            let mut live = false;
             state.fill(0.0);
             for i in (0..nx).rev() {
                 let k = base + i;
-                let entering: f64 = self
-                    .branches
-                    .iter()
-                    .zip(&state)
-                    .fold(0.0, |s, (b, e)| s + b.keep_half * e);
+                let entering = if live { self.entering(&state) } else { 0.0 };
                 if active[k] {
                     let mut d = self.diagonal[k] + extra_diagonal;
                     if d <= 0.1 * extra_diagonal {
@@ -332,8 +378,9 @@ impl ViscoelasticJacobian {
                     y[k] = 0.0;
                 }
                 let df = self.forcing_slope[k] * y[k];
-                for (b, e) in self.branches.iter().zip(state.iter_mut()) {
-                    *e = b.keep_full * *e + b.take_full * b.scale * df;
+                live |= df != 0.0;
+                if live {
+                    self.advance(&mut state, df);
                 }
                 upstream += self.flow_slope[k] * y[k];
                 upstream_forcing = df;
