@@ -74,3 +74,26 @@ pub fn solve_to(case: &Case, tolerance: f64) -> Solution {
 pub fn rel(a: f64, b: f64) -> f64 {
     ((a - b) / b).abs()
 }
+
+/// The FFT solver's solution of `case` (to 1e-13) against the dense reference on the
+/// same grid: `(max |dp| / max p, relative difference of D, loaded cells)`.
+pub fn against_dense_reference(case: &Case, label: &str) -> (f64, f64, usize) {
+    let fast = solve_to(case, 1e-13);
+    let dense = thirdbody::reference::solve_dense(case, &fast.grid, 1e-13)
+        .unwrap_or_else(|e| panic!("{label}: {e}"));
+    let pmax = dense.pressure.iter().fold(0.0f64, |m, v| m.max(*v));
+    let diff = fast
+        .pressure
+        .iter()
+        .zip(&dense.pressure)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let loaded = fast.pressure.iter().filter(|&&p| p > 0.0).count();
+    eprintln!(
+        "{label}: max|dp|/max p = {:.2e}, D {:.3e} vs {:.3e}, {loaded} loaded cells, {:?}",
+        diff / pmax,
+        fast.approach,
+        dense.approach,
+        fast.info.method
+    );
+    (diff / pmax, rel(fast.approach, dense.approach), loaded)
+}
