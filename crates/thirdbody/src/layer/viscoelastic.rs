@@ -8,8 +8,8 @@
 //! * glassy: `w_g,i = (C_g / C[0]) F(p_i)`, with `F(p) = G(p) = int_0^p C[q] dq`
 //!   (`exact`) or `C[p] p` (`secant`);
 //! * flow (paper eq. 2's dashpot): `dw_v/dt = (C_v / C[0]) C[p] p / T`, so at the
-//!   centre of cell i `w_v,i = (C_v / C[0]) (h / (V T)) (sum_{j upstream} C[p_j] p_j
-//!   + C[p_i] p_i / 2)`;
+//!   centre of cell i
+//!   `w_v,i = (C_v / C[0]) (h / (V T)) (sum_{j upstream} C[p_j] p_j + C[p_i] p_i / 2)`;
 //! * Kelvin–Voigt branch k: `tau_k dw_k/dt + w_k = (C_k / C[0]) F(p)`, a first-order
 //!   linear ODE along the row. Over a cell its forcing `F_i` is constant, so with
 //!   `a = exp(-h / (V tau_k))` and `b = exp(-h / (2 V tau_k))` the value entering the
