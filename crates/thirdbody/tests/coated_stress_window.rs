@@ -189,11 +189,9 @@ fn kernels(k: &CoatedStressKernels, z: f64, n: usize) -> InfluenceTable {
 /// a = 16 cells, h1 from a/10 to 2a, E1/E2 from 1/10 to 100; the differences on the
 /// common offsets must stay below 1e-9 of the largest coefficient at that depth.
 ///
-/// It fails with the present periodic remainder sum (docs/validation.md, "Coated
-/// stresses: stiff or thick coatings"): measured up to 2e1 of the peak for E1/E2 = 100,
-/// h1 = 2a; 6e-4 at the surface for E1/E2 = 30, h1 = a/2. Run it with `--ignored`.
+/// The former periodic remainder sum failed it by up to 2e1 of the peak (E1/E2 = 100,
+/// h1 = 2a) and 6e-4 at the surface (E1/E2 = 30, h1 = a/2); measured now: 5e-10.
 #[test]
-#[ignore = "issue 9 part 1 is open: the remainder's periodic images (docs/validation.md)"]
 fn stress_coefficients_do_not_depend_on_the_window() {
     let a = 16.0;
     let sizes = [65usize, 129, 257];

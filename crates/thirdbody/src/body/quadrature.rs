@@ -205,6 +205,69 @@ impl<const N: usize> InterleavedPanels<N> {
     }
 }
 
+/// Any number of functions on the same Chebyshev panels, evaluated together: the
+/// Chebyshev polynomials at a point are computed once (three-term recurrence) and
+/// each function's value is their dot product with its coefficients, so the cost per
+/// extra function is one short dot product.
+#[derive(Debug, Clone)]
+pub struct SharedPanels {
+    /// The panels' layout (the first function's).
+    layout: ChebyshevPanels,
+    /// Per panel, the coefficients of all functions: `((p * n_functions) + f) * degree + j`.
+    coefficients: Vec<f64>,
+    functions: usize,
+}
+
+impl SharedPanels {
+    /// Interpolants of the columns of `values`: `values[f]` sampled at
+    /// [`ChebyshevPanels::points`]`(lo, hi, panels, degree)`.
+    pub fn from_values(
+        lo: f64,
+        hi: f64,
+        panels: usize,
+        degree: usize,
+        values: &[Vec<f64>],
+    ) -> Self {
+        let per: Vec<ChebyshevPanels> = values
+            .iter()
+            .map(|v| ChebyshevPanels::from_values(lo, hi, panels, degree, v))
+            .collect();
+        let layout =
+            ChebyshevPanels::from_values(lo, hi, panels, degree, &vec![0.0; panels * degree]);
+        let mut coefficients = Vec::with_capacity(panels * degree * per.len());
+        for p in 0..panels {
+            for f in &per {
+                coefficients.extend_from_slice(&f.coefficients[p * degree..(p + 1) * degree]);
+            }
+        }
+        SharedPanels {
+            layout,
+            coefficients,
+            functions: per.len(),
+        }
+    }
+
+    /// Every function's interpolant at `x`, written to `out` (one per function).
+    pub fn eval_into(&self, x: f64, out: &mut [f64]) {
+        let (p, u) = self.layout.locate(x);
+        let degree = self.layout.degree;
+        let mut t = [0.0f64; 64];
+        let t = &mut t[..degree.min(64)];
+        t[0] = 1.0;
+        if degree > 1 {
+            t[1] = u;
+        }
+        for j in 2..t.len() {
+            t[j] = 2.0 * u * t[j - 1] - t[j - 2];
+        }
+        let block =
+            &self.coefficients[p * self.functions * degree..(p + 1) * self.functions * degree];
+        for (o, c) in out.iter_mut().zip(block.chunks_exact(degree)) {
+            *o = c.iter().zip(t.iter()).map(|(a, b)| a * b).sum();
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -25,31 +25,35 @@
 //!    `k l e^{-k l}` times `(c^2, s^2, c s)` with (a) added, times 1 in sigma_z and
 //!    times `i (c, s)` in the shears.
 //! 3. The remainder, O(k^2) at k -> 0 and decaying at large k like `e^{-k lambda}`
-//!    (the reflection from the interface). It is summed on a periodic lattice of
-//!    the cell pitch: base wavenumbers `2 pi j / (M h)` plus their aliases
-//!    `2 pi m / h` until `e^{-k lambda}` is negligible, then one inverse 2-D FFT. Its
-//!    four wave-frame functions of |k| are tabulated once per depth on Chebyshev
-//!    panels. The cost per depth grows like `(h / lambda)^2` for coatings thinner
-//!    than a cell (the aliases resolve the sub-cell structure).
+//!    (the reflection from the interface), split by the smooth share `chi(k) = e^{-q}
+//!    sum_{j<8} q^j / j!`, `q = (k / k1)^2` ([`super::coated_long_wave`]):
+//!    (a) its short waves `(1 - chi) T` are summed on a periodic lattice of the cell
+//!    pitch: base wavenumbers `2 pi j / (M h)` plus their aliases `2 pi m / h` until
+//!    `e^{-k lambda}` is negligible, then one inverse 2-D FFT. The four wave-frame
+//!    functions of |k| are tabulated once per depth on Chebyshev panels, graded
+//!    towards k = 0. The cost per depth grows like `(h / lambda)^2` for coatings
+//!    thinner than a cell (the aliases resolve the sub-cell structure);
+//!    (b) its long waves `chi T` in free space, by Hankel transforms
+//!    ([`super::coated_long_wave`]).
 //!
-//! Known limitation (issue 9 part 1, open): the lattice sum is the remainder's
-//! kernel plus its periodic images, and the images are not negligible in general.
-//! The wave-frame functions are analytic in |k|, so in (kx, ky) the non-analytic
-//! terms left after the carriers are the odd powers `|k|^3, |k|^5, ...` of the
-//! normal stresses (with the angular factors `c^2, s^2, c s`; the even powers are
-//! polynomials in kx, ky) and `|k|^2, |k|^4, ...` of the shears (times `c, s`):
-//! real-space tails `r^-5` (a nearly uniform offset from the images) and `r^-4`
-//! (odd, cancelling at the loaded cell to leading order). For a stiff coating the
-//! Taylor series of the remainder in k converges only for `k < 1 / l`, with the
-//! coating's membrane length `l ~ 2 (E1/E2) h1` (ratios of successive coefficients
-//! 7, 62 and 202 h1 for E1/E2 = 3, 30, 100, nu = 0.3), so the kernel reaches out to
-//! ~l (falling like `r^-3` between h1 and l) before the `r^-5` tail starts; a thick
-//! coating's kernel has its own structure on the scale h1. Where l or h1 is not
-//! small against the box (`BOX_FACTOR` times the offsets' span) the coefficients
-//! depend on the window: measured in `tests/coated_stress_window.rs` and
-//! docs/validation.md. Enlarging the box converges only like `L^-3` to `L^-5`, far
-//! too slowly for l of hundreds of cells; the fix needs the long-range part computed
-//! without images.
+//! Why the split (issue 9 part 1). A lattice sum is the kernel plus its periodic
+//! images. The remainder's wave-frame functions are analytic in |k|, so in (kx, ky)
+//! its non-analytic terms (`|k|^3, |k|^5, ...` in the normal stresses, `|k|^2, ...`
+//! in the shears) give real-space tails `r^-5` and `r^-4`; worse, for a stiff
+//! coating the Taylor series in k converges only for `k < 1 / l`, with the coating's
+//! membrane length `l ~ 2 (E1/E2) h1`, so the kernel reaches out to ~l before that
+//! tail starts. Summed on a box of a few windows, the images put a window-dependent
+//! offset on every coefficient (+8 % on the surface sigma_x of E1/E2 = 30, h1 = 0.002
+//! on its automatic window). The short waves' kernel is the remainder minus a
+//! Gaussian smoothing of width `1 / k1` whose moments vanish up to order 15, so it
+//! falls off like `(k1 r)^-16` times the remainder's 16th derivative and a box
+//! `REACH / k1` wider than the offsets holds it without images; the long waves are
+//! band-limited to `8 k1`, so their Hankel transforms and the tensor interpolation
+//! to the offsets are cheap when `k1 ~ 4 / span`. Measured: one cell's coefficients
+//! agree between windows of 65, 129 and 257 cells to 5e-10 of the peak for E1/E2 from
+//! 1/10 to 100 and h1 from a/10 to 2a (`tests/coated_stress_window.rs`), and the
+//! sections of the stiff case agree with a brute-force Fourier quadrature to 2.4e-7
+//! of the peak (`tests/coated_stress_brute_force.rs`).
 //!
 //! With E1 = E2 and nu1 = nu2 the remainder and the carrier vanish (to rounding), and
 //! the kernels are Love's. At the interface each side uses its own transfer and its
@@ -63,6 +67,7 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
 
+use super::coated_long_wave::{long_wave_kernels, short_wave_share, BAND_EDGE};
 use super::kernels::{
     HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
 };
@@ -72,11 +77,16 @@ use crate::case::Elastic;
 
 /// Relative size of the last alias term kept: `e^{-k lambda}` below `e^{-ALIAS_DECAY}`.
 const ALIAS_DECAY: f64 = 32.0;
-/// Periodic box of the remainder: at least this many times the span of the offsets.
-/// Measured on a coated Hertz case (E1/E2 = 3, h1 = a/2, 64 x 64): the stresses
-/// change by 1.7e-4 p0 from 2 to 8, 3e-5 from 3 to 8, 7e-6 from 4 to 8. Not enough
-/// for stiff or thick coatings (see the module comment).
-const BOX_FACTOR: usize = 3;
+/// The short-wave part's kernel is negligible beyond `REACH / k1` from the loaded
+/// cell; the periodic box leaves that much room between an offset and the nearest
+/// image of the loaded cell. Measured on the window test (E1/E2 = 100, h1 = 2a, the
+/// worst case): 16 leaves 6e-9 of the peak, 20 leaves 5e-10.
+const REACH: f64 = 20.0;
+/// The split wavenumber `k1 = REACH / (SPLIT_SPANS * span)` (at most 1 / h): the box
+/// is then `1 + SPLIT_SPANS` spans of the offsets, as large as the former lattice
+/// sum's (whose cost it keeps), and the long waves are band-limited to `8 k1 = 32 /
+/// span`.
+const SPLIT_SPANS: f64 = 5.0;
 /// Chebyshev panel degree of the tabulated remainder.
 const PANEL_DEGREE: usize = 20;
 
@@ -207,15 +217,19 @@ impl StressKernels for CoatedStressKernels {
             v[4][n] += ep * zero.values[4][n];
             v[5][n] += ep * zero.values[5][n];
         }
-        // 3. The remainder, O(k^2) at k = 0, by a periodic lattice sum.
-        let remainder = remainder_on_lattice(lattice, lambda, self.thickness, &|k| {
+        // 3. The remainder, O(k^2) at k = 0: its short waves by a periodic lattice
+        // sum, its long waves by Hankel transforms.
+        let remainder = |k: f64| -> [f64; 4] {
             let d = self.difference(side, z, carrier, k);
             let e = k * (-k * lambda).exp();
             std::array::from_fn(|q| d[q] - r1[q] * e)
-        });
-        for (t, r) in table.values.iter_mut().zip(remainder) {
-            for (v, d) in t.iter_mut().zip(r) {
-                *v += d;
+        };
+        let k1 = split_wavenumber(lattice);
+        let short = remainder_on_lattice(lattice, lambda, self.thickness, k1, &remainder);
+        let long = long_wave_kernels(lattice, k1, &remainder);
+        for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
+            for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
+                *v += a + b;
             }
         }
     }
@@ -231,15 +245,10 @@ struct Axis {
 }
 
 impl Axis {
-    /// `min_span`: the box is sized as if the offsets spanned at least this many
-    /// cells each side (the other axis's span: a square box keeps the periodic
-    /// images equally far in both directions).
-    fn new(first: f64, count: usize, aliases: i64, min_span: usize) -> Self {
+    /// `len`: the box, in cells.
+    fn new(first: f64, aliases: i64, len: usize) -> Self {
         let whole = first.floor();
         let frac = first - whole;
-        let last = whole + count as f64;
-        let span = whole.abs().max(last.abs()) as usize + 1;
-        let len = fft_friendly(2 * BOX_FACTOR * span.max(min_span)).max(16);
         Axis {
             len,
             first: whole as i64,
@@ -283,13 +292,32 @@ fn sinc(t: f64) -> f64 {
     }
 }
 
-/// The remainder kernel on `lattice`, `[sigma_x, ..., tau_yz]` per offset, from its
-/// wave-frame transfer `radial(k) = [xixi, etaeta, zz, xiz / i]` (k in 1/length),
-/// which decays at least like `e^{-k lambda}`.
+/// The largest distance of an offset from the loaded cell along either axis, in cells.
+fn span_in_cells(lattice: &OffsetLattice) -> usize {
+    let span = |first: f64, count: usize| {
+        let whole = first.floor();
+        whole.abs().max((whole + count as f64).abs()) as usize + 1
+    };
+    span(lattice.x_first, lattice.cols).max(span(lattice.y_first, lattice.rows))
+}
+
+/// The wavenumber `k1` splitting the remainder into its long waves (free space) and
+/// its short waves (lattice).
+fn split_wavenumber(lattice: &OffsetLattice) -> f64 {
+    let h = lattice.cell;
+    (REACH / (SPLIT_SPANS * span_in_cells(lattice) as f64 * h)).min(1.0 / h)
+}
+
+/// The short-wave part `(1 - chi(k)) T(k)` of the remainder kernel on `lattice`,
+/// `[sigma_x, ..., tau_yz]` per offset, from its wave-frame transfer `radial(k) =
+/// [xixi, etaeta, zz, xiz / i]` (k in 1/length), which decays at least like
+/// `e^{-k lambda}`. Its kernel falls off within `REACH / k1`, so a periodic box that
+/// much wider than the offsets' span sums it without images.
 fn remainder_on_lattice(
     lattice: &OffsetLattice,
     lambda: f64,
     thickness: f64,
+    k1: f64,
     radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
 ) -> [Vec<f64>; COMPONENTS] {
     let h = lattice.cell;
@@ -297,17 +325,27 @@ fn remainder_on_lattice(
     let theta_max = ALIAS_DECAY * h / lambda.max(1e-300);
     // Alias m covers theta in [2 pi m - pi, 2 pi m + pi].
     let aliases = (((theta_max + PI) / (2.0 * PI)).floor() as i64).clamp(0, 64);
-    let span = |first: f64, count: usize| {
-        let whole = first.floor();
-        whole.abs().max((whole + count as f64).abs()) as usize + 1
-    };
-    let min_span = span(lattice.x_first, lattice.cols).max(span(lattice.y_first, lattice.rows));
-    let ax = Axis::new(lattice.x_first, lattice.cols, aliases, min_span);
-    let ay = Axis::new(lattice.y_first, lattice.rows, aliases, min_span);
+    // A square box, so that the images are equally far in both directions.
+    let span = span_in_cells(lattice);
+    let reach = (REACH / (k1 * h)).ceil() as usize;
+    let len = fft_friendly((span + reach).max(2 * span + 2)).max(16);
+    let ax = Axis::new(lattice.x_first, aliases, len);
+    let ay = Axis::new(lattice.y_first, aliases, len);
     // Theta = k h of the table: up to the largest alias, capped by the decay.
     let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max + PI);
     // The longest length in the transfer's exponentials is about z + 2 h1 <= 2 lambda + 2 h1.
-    let radial_table = RadialTable::new(theta_top, h, 2.0 * (lambda + thickness), radial);
+    // Below k1 / 100 the high-pass factor is below 1e-16.
+    let k1h = k1 * h;
+    let radial_table =
+        RadialTable::new(theta_top, h, 2.0 * (lambda + thickness), 0.01 * k1h, radial);
+    // `1 - chi(k)`, which is 1 to double precision beyond BAND_EDGE k1.
+    let high_pass = |theta: f64| {
+        if theta > BAND_EDGE * k1h {
+            1.0
+        } else {
+            short_wave_share(theta, k1h)
+        }
+    };
 
     // Per axis: for each base index and alias order, theta = k h, sinc and the phase
     // of the fractional offset.
@@ -368,7 +406,7 @@ fn remainder_on_lattice(
                         if theta > theta_cut {
                             continue;
                         }
-                        let r = radial_table.eval(theta);
+                        let r = radial_table.eval(theta).map(|v| v * high_pass(theta));
                         let (c, s) = if theta > 0.0 {
                             (tx_ / theta, ty_ / theta)
                         } else {
@@ -431,28 +469,65 @@ fn remainder_on_lattice(
 }
 
 /// The four wave-frame functions of `theta = k h` on Chebyshev panels, evaluated
-/// together (the lattice sum spends most of its time here).
+/// together (the lattice sum spends most of its time here). Panels double in width
+/// from `theta_graded` up to the uniform width: near k = 0 a stiff coating's transfer
+/// varies on the scale of its membrane length, far below the uniform width.
 struct RadialTable {
-    panels: InterleavedPanels<4>,
+    graded: Vec<InterleavedPanels<4>>,
+    theta_graded: f64,
+    uniform_from: f64,
+    uniform: Option<InterleavedPanels<4>>,
 }
 
 impl RadialTable {
-    /// Tabulates `radial(theta / h)` on `[0, theta_top]` with panels no wider than
-    /// the scale `h / length` of its exponentials.
-    fn new(theta_top: f64, h: f64, length: f64, radial: &(dyn Fn(f64) -> [f64; 4] + Sync)) -> Self {
+    /// Tabulates `radial(theta / h)` on `[0, theta_top]`: graded panels from
+    /// `theta_graded`, then panels no wider than the scale `h / length` of its
+    /// exponentials.
+    fn new(
+        theta_top: f64,
+        h: f64,
+        length: f64,
+        theta_graded: f64,
+        radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
+    ) -> Self {
         let width = (2.0 * h / length.max(1e-300)).min(PI);
-        let panels = ((theta_top / width).ceil() as usize).max(1);
-        let hi = panels as f64 * width;
-        let points = ChebyshevPanels::points(0.0, hi, panels, PANEL_DEGREE);
-        let values: Vec<[f64; 4]> = points.par_iter().map(|&t| radial(t / h)).collect();
-        let panels = InterleavedPanels::new(std::array::from_fn(|q| {
-            let v: Vec<f64> = values.iter().map(|r| r[q]).collect();
-            ChebyshevPanels::from_values(0.0, hi, panels, PANEL_DEGREE, &v)
-        }));
-        RadialTable { panels }
+        let build = |lo: f64, hi: f64, panels: usize| {
+            let points = ChebyshevPanels::points(lo, hi, panels, PANEL_DEGREE);
+            let values: Vec<[f64; 4]> = points.par_iter().map(|&t| radial(t / h)).collect();
+            InterleavedPanels::new(std::array::from_fn(|q| {
+                let v: Vec<f64> = values.iter().map(|r| r[q]).collect();
+                ChebyshevPanels::from_values(lo, hi, panels, PANEL_DEGREE, &v)
+            }))
+        };
+        let mut graded = vec![build(0.0, theta_graded, 1)];
+        let mut lo = theta_graded;
+        while lo < width && lo < theta_top {
+            graded.push(build(lo, 2.0 * lo, 1));
+            lo *= 2.0;
+        }
+        let uniform = (lo < theta_top).then(|| {
+            let panels = (((theta_top - lo) / width).ceil() as usize).max(1);
+            build(lo, lo + panels as f64 * width, panels)
+        });
+        RadialTable {
+            graded,
+            theta_graded,
+            uniform_from: lo,
+            uniform,
+        }
     }
 
     fn eval(&self, theta: f64) -> [f64; 4] {
-        self.panels.eval(theta)
+        if theta >= self.uniform_from {
+            if let Some(u) = &self.uniform {
+                return u.eval(theta);
+            }
+        }
+        let i = if theta < self.theta_graded {
+            0
+        } else {
+            1 + (theta / self.theta_graded).log2().floor() as usize
+        };
+        self.graded[i.min(self.graded.len() - 1)].eval(theta)
     }
 }

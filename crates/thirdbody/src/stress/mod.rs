@@ -25,6 +25,7 @@
 //! ```
 
 mod coated_kernels;
+mod coated_long_wave;
 pub mod derived;
 pub mod kernels;
 pub mod request;

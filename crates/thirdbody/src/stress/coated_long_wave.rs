@@ -1,0 +1,408 @@
+//! The long-wave part of the coated-body stress remainder (see [`super::coated_kernels`]),
+//! computed in free space, without the periodic images of a lattice sum:
+//! `K(X) = (1 / 4 pi^2) int chi(k) T(k, phi) P(k, phi) e^{i k.X} d^2k`, with the
+//! remainder's transfer `T` in wave-frame form, the cell factor `P = h^2 sinc(kx h/2)
+//! sinc(ky h/2)` and the band limit `chi(k) = e^{-q} (1 + q + q^2/2 + q^3/6)`, `q = (k/k1)^2`. In polar coordinates
+//! each angular Fourier mode `g_n(k) e^{i n phi}` of `chi T P` integrates to a Bessel
+//! function, `int e^{i n phi} e^{i k r cos(phi - theta)} dphi = 2 pi i^n J_n(k r)
+//! e^{i n theta}` (Watson, Theory of Bessel Functions, §2.22), so
+//! `K(r, theta) = (1 / 2 pi) sum_{n >= 0} [cos(n theta) A_n(r) + sin(n theta) B_n(r)]`
+//! with the Hankel transforms `A_n = int k a_n(k) J_n(k r) dk`, `a_n = Re(i^n (g_n +
+//! g_-n))`, `B_n` likewise with `b_n = Re(i^(n+1) (g_n - g_-n))` (`a_0 = Re g_0`,
+//! `b_0 = 0`). The k integral is Gauss–Legendre on panels graded geometrically towards
+//! k = 0, where the transfer of a stiff coating varies on the scale of its membrane
+//! length, and no wider than the oscillation of `J_n(k r_max)` allows; the angular modes
+//! come from a DFT of the integrand on equally spaced angles (spectrally accurate for
+//! a smooth periodic function); the `A_n`, `B_n` are tabulated on Chebyshev panels in r
+//! (band-limited, so smooth) and summed at every offset.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+use realfft::num_complex::Complex;
+
+use super::kernels::{OffsetLattice, COMPONENTS};
+use crate::body::quadrature::{GaussLegendre, SharedPanels};
+
+/// Terms of the long waves' share: `chi(k) = e^{-q} sum_{j < TERMS} q^j / j!`, `q =
+/// (k / k1)^2`. Then `1 - chi = O(k^16)` at k = 0, so the short-wave complement keeps
+/// almost none of the remainder's long-range structure: its kernel is the remainder
+/// minus a Gaussian smoothing of width ~1/k1 whose moments vanish up to order 15 (a
+/// Gaussian times a Laguerre polynomial), so beyond the remainder's own scales it
+/// falls off like `(k1 r)^-16` times the remainder's 16th derivative.
+const TERMS: i32 = 8;
+
+/// The long waves' share `chi(k)` of the remainder.
+pub(super) fn long_wave_share(k: f64, k1: f64) -> f64 {
+    let q = (k / k1).powi(2);
+    let (mut term, mut sum) = (1.0, 0.0);
+    for j in 0..TERMS {
+        sum += term;
+        term *= q / (j + 1) as f64;
+    }
+    (-q).exp() * sum
+}
+
+/// `1 - chi(k)`, accurate where it is small (`e^{-q} sum_{j >= TERMS} q^j / j!`).
+pub(super) fn short_wave_share(k: f64, k1: f64) -> f64 {
+    let q = (k / k1).powi(2);
+    if q >= 4.0 {
+        return 1.0 - long_wave_share(k, k1);
+    }
+    let mut term = 1.0;
+    for j in 1..=TERMS {
+        term *= q / j as f64;
+    }
+    let mut sum = 0.0;
+    for j in TERMS + 1..TERMS + 60 {
+        sum += term;
+        term *= q / j as f64;
+    }
+    (-q).exp() * sum
+}
+
+/// `chi` is below 1e-17 beyond `BAND_EDGE k1`.
+pub(super) const BAND_EDGE: f64 = 8.0;
+/// Angles of the DFT of the integrand, and the highest angular order kept.
+const ANGLES: usize = 64;
+const MAX_ORDER: usize = 24;
+/// Gauss–Legendre points per k panel; Chebyshev points per r panel.
+const K_POINTS: usize = 16;
+const R_POINTS: usize = 24;
+/// The graded k panels reach down to `k_edge 2^-GRADING` (below it the integrand,
+/// O(k^3), adds nothing at double precision).
+const GRADING: i32 = 30;
+
+/// The band-limited long-wave part of a remainder with wave-frame transfer
+/// `radial(k) = [xixi, etaeta, zz, xiz / i]` (k in 1/length), at every offset of
+/// `lattice`: `[sigma_x, ..., tau_yz]`, offsets row-major as in the influence tables.
+pub(super) fn long_wave_kernels(
+    lattice: &OffsetLattice,
+    k1: f64,
+    radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
+) -> [Vec<f64>; COMPONENTS] {
+    let h = lattice.cell;
+    let k_edge = k1 * BAND_EDGE;
+    let extent = |first: f64, count: usize| {
+        let (a, b) = (first * h, (first + count as f64 - 1.0) * h);
+        a.abs().max(b.abs())
+    };
+    let r_max = extent(lattice.x_first, lattice.cols)
+        .hypot(extent(lattice.y_first, lattice.rows))
+        .max(h);
+
+    // k nodes and weights (times k, the polar Jacobian).
+    let rule = GaussLegendre::new(K_POINTS);
+    let widest = 8.0 / r_max;
+    let mut bounds = vec![0.0];
+    for i in (0..=GRADING).rev() {
+        let hi = k_edge * 2f64.powi(-i);
+        let lo = *bounds.last().unwrap_or(&0.0);
+        let pieces = ((hi - lo) / widest).ceil().max(1.0) as usize;
+        for p in 1..=pieces {
+            bounds.push(lo + (hi - lo) * p as f64 / pieces as f64);
+        }
+    }
+    let mut nodes = Vec::new();
+    for w in bounds.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        let (half, mid) = (0.5 * (hi - lo), 0.5 * (hi + lo));
+        for (x, wt) in rule.nodes.iter().zip(&rule.weights) {
+            let k = mid + half * x;
+            nodes.push((k, wt * half * k));
+        }
+    }
+
+    // Angular modes per k node: `[c][n][cos | sin]` radial functions (times weight).
+    let dft = rustfft::FftPlanner::<f64>::new().plan_fft_forward(ANGLES);
+    let per_node: Vec<Vec<f64>> = nodes
+        .par_iter()
+        .map(|&(k, weight)| angular_modes(k, h, k1, weight, radial(k), dft.as_ref()))
+        .collect();
+    let entries_all = COMPONENTS * (MAX_ORDER + 1) * 2;
+    // Keep the modes that matter (bounded by the sum of |f| since |J_n| <= 1).
+    let size: Vec<f64> = (0..entries_all)
+        .map(|e| per_node.iter().map(|f| f[e].abs()).sum())
+        .collect();
+    let largest = size.iter().fold(0.0f64, |m, &v| m.max(v));
+    let kept: Vec<usize> = (0..entries_all)
+        .filter(|&e| size[e] > 1e-15 * largest && largest > 0.0)
+        .collect();
+    if kept.is_empty() {
+        return std::array::from_fn(|_| vec![0.0; lattice.cols * lattice.rows]);
+    }
+    let order_of = |e: usize| (e / 2) % (MAX_ORDER + 1);
+    let top_order = kept.iter().map(|&e| order_of(e)).max().unwrap_or(0);
+
+    // Hankel transforms at the Chebyshev points in r.
+    let panels = ((r_max * k_edge / 8.0).ceil() as usize).max(1);
+    let r_nodes = crate::body::quadrature::ChebyshevPanels::points(0.0, r_max, panels, R_POINTS);
+    let transforms: Vec<Vec<f64>> = r_nodes
+        .par_iter()
+        .map(|&r| {
+            let mut sums = vec![0.0; kept.len()];
+            let mut j = vec![0.0; top_order + 1];
+            for (&(k, _), f) in nodes.iter().zip(&per_node) {
+                bessel_j_upto(k * r, &mut j);
+                for (s, &e) in sums.iter_mut().zip(&kept) {
+                    *s += f[e] * j[order_of(e)];
+                }
+            }
+            sums
+        })
+        .collect();
+    let columns: Vec<Vec<f64>> = (0..kept.len())
+        .map(|q| transforms.iter().map(|t| t[q]).collect())
+        .collect();
+    let table = SharedPanels::from_values(0.0, r_max, panels, R_POINTS, &columns);
+
+    // The band-limited kernel at one point.
+    let at = |x: f64, y: f64, h_values: &mut [f64], trig: &mut [(f64, f64)]| {
+        let r = x.hypot(y);
+        let (c, s) = if r > 0.0 { (x / r, y / r) } else { (1.0, 0.0) };
+        trig[0] = (1.0, 0.0);
+        for n in 1..trig.len() {
+            let (cp, sp) = trig[n - 1];
+            trig[n] = (cp * c - sp * s, sp * c + cp * s);
+        }
+        table.eval_into(r, h_values);
+        let mut v = [0.0; COMPONENTS];
+        for (&e, hv) in kept.iter().zip(h_values.iter()) {
+            let (cn, sn) = trig[order_of(e)];
+            let factor = if e % 2 == 0 { cn } else { sn };
+            v[e / (2 * (MAX_ORDER + 1))] += factor * hv;
+        }
+        v.map(|t| t / (2.0 * PI))
+    };
+    // It is an entire function of exponential type k_edge, so on the offsets'
+    // rectangle it is a tensor Chebyshev interpolant of modest degree: sample it at
+    // the Chebyshev points and interpolate to the offsets (barycentric formula;
+    // Trefethen, Approximation Theory and Approximation Practice, ch. 5), or take the
+    // offsets themselves where there are fewer of them.
+    let x_axis = InterpolationAxis::new(lattice.x_first * h, lattice.cols, h, k_edge);
+    let y_axis = InterpolationAxis::new(lattice.y_first * h, lattice.rows, h, k_edge);
+    let samples: Vec<[f64; COMPONENTS]> = y_axis
+        .nodes
+        .par_iter()
+        .flat_map_iter(|&y| {
+            let mut h_values = vec![0.0; kept.len()];
+            let mut trig = vec![(0.0, 0.0); top_order + 1];
+            x_axis
+                .nodes
+                .iter()
+                .map(move |&x| at(x, y, &mut h_values, &mut trig))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let (nx, ny, cols) = (x_axis.nodes.len(), y_axis.nodes.len(), lattice.cols);
+    let mut out: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| Vec::new());
+    for (c, o) in out.iter_mut().enumerate() {
+        // Along x: u[j][col] = sum_i G[j][i] Wx[i][col].
+        let u: Vec<Vec<f64>> = (0..ny)
+            .into_par_iter()
+            .map(|j| x_axis.interpolate(|i| samples[j * nx + i][c]))
+            .collect();
+        // Along y: out[row][col] = sum_j Wy[j][row] u[j][col].
+        let rows: Vec<Vec<f64>> = (0..lattice.rows)
+            .into_par_iter()
+            .map(|m| {
+                let mut line = vec![0.0; cols];
+                y_axis.accumulate(m, &u, &mut line);
+                line
+            })
+            .collect();
+        *o = rows.concat();
+    }
+    out
+}
+
+/// One axis of the tensor interpolation: the sample points (Chebyshev points of the
+/// second kind spanning the offsets, or the offsets themselves) and the barycentric
+/// weights of every offset, `weights[i * count + m]` for sample i and offset m.
+struct InterpolationAxis {
+    nodes: Vec<f64>,
+    count: usize,
+    weights: Vec<f64>,
+}
+
+impl InterpolationAxis {
+    fn new(first: f64, count: usize, h: f64, k_edge: f64) -> Self {
+        let (lo, hi) = (first, first + (count as f64 - 1.0) * h);
+        let half = 0.5 * (hi - lo);
+        // Chebyshev coefficients of e^{i k x} on a half-width w decay like J_n(k w):
+        // negligible (1e-16) beyond n ~ k w + 10 (k w)^(1/3) + 12.
+        let kw = k_edge * half;
+        let degree = (kw + 10.0 * kw.cbrt() + 12.0).ceil() as usize;
+        if count <= degree + 1 {
+            let nodes: Vec<f64> = (0..count).map(|m| first + m as f64 * h).collect();
+            let mut weights = vec![0.0; count * count];
+            for m in 0..count {
+                weights[m * count + m] = 1.0;
+            }
+            return InterpolationAxis {
+                nodes,
+                count,
+                weights,
+            };
+        }
+        let n = degree + 1;
+        let mid = 0.5 * (hi + lo);
+        let nodes: Vec<f64> = (0..n)
+            .map(|i| mid + half * (PI * i as f64 / degree as f64).cos())
+            .collect();
+        let bary: Vec<f64> = (0..n)
+            .map(|i| {
+                let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                if i == 0 || i == degree {
+                    0.5 * sign
+                } else {
+                    sign
+                }
+            })
+            .collect();
+        let mut weights = vec![0.0; n * count];
+        for m in 0..count {
+            let t = first + m as f64 * h;
+            if let Some(i) = nodes.iter().position(|&x| x == t) {
+                weights[i * count + m] = 1.0;
+                continue;
+            }
+            let terms: Vec<f64> = nodes.iter().zip(&bary).map(|(x, w)| w / (t - x)).collect();
+            let total: f64 = terms.iter().sum();
+            for (i, term) in terms.iter().enumerate() {
+                weights[i * count + m] = term / total;
+            }
+        }
+        InterpolationAxis {
+            nodes,
+            count,
+            weights,
+        }
+    }
+
+    /// The interpolant at every offset of the values `sample(i)` at the nodes.
+    fn interpolate(&self, sample: impl Fn(usize) -> f64) -> Vec<f64> {
+        let mut line = vec![0.0; self.count];
+        for i in 0..self.nodes.len() {
+            let g = sample(i);
+            for (l, w) in line.iter_mut().zip(&self.weights[i * self.count..]) {
+                *l += g * w;
+            }
+        }
+        line
+    }
+
+    /// `line += sum_j w_j(offset m) u[j]`.
+    fn accumulate(&self, m: usize, u: &[Vec<f64>], line: &mut [f64]) {
+        for (j, uj) in u.iter().enumerate() {
+            let w = self.weights[j * self.count + m];
+            if w != 0.0 {
+                for (l, v) in line.iter_mut().zip(uj) {
+                    *l += w * v;
+                }
+            }
+        }
+    }
+}
+
+/// `sin(t) / t`.
+fn sinc(t: f64) -> f64 {
+    if t.abs() < 1e-8 {
+        1.0 - t * t / 6.0
+    } else {
+        t.sin() / t
+    }
+}
+
+/// The radial functions `a_n`, `b_n` of the six components at wavenumber k, times
+/// `weight`: entry `(c (MAX_ORDER + 1) + n) 2 + {0: cos, 1: sin}`.
+fn angular_modes(
+    k: f64,
+    h: f64,
+    k1: f64,
+    weight: f64,
+    t: [f64; 4],
+    dft: &dyn rustfft::Fft<f64>,
+) -> Vec<f64> {
+    let chi = long_wave_share(k, k1);
+    let [xixi, etaeta, zz, xiz] = t.map(|v| v * chi * h * h);
+    // The integrand of each component at the DFT angles.
+    let mut samples = [[Complex::<f64>::default(); ANGLES]; COMPONENTS];
+    #[allow(clippy::needless_range_loop)] // j indexes six arrays and sets the angle.
+    for j in 0..ANGLES {
+        let phi = 2.0 * PI * j as f64 / ANGLES as f64;
+        let (s, c) = phi.sin_cos();
+        let p = sinc(0.5 * k * h * c) * sinc(0.5 * k * h * s);
+        samples[0][j] = Complex::new((xixi * c * c + etaeta * s * s) * p, 0.0);
+        samples[1][j] = Complex::new((xixi * s * s + etaeta * c * c) * p, 0.0);
+        samples[2][j] = Complex::new(zz * p, 0.0);
+        samples[3][j] = Complex::new((xixi - etaeta) * c * s * p, 0.0);
+        samples[4][j] = Complex::new(0.0, xiz * c * p);
+        samples[5][j] = Complex::new(0.0, xiz * s * p);
+    }
+    for g in samples.iter_mut() {
+        dft.process(g);
+    }
+    // Mode n of the samples (the DFT's bin n mod ANGLES, over ANGLES).
+    let mode = |g: &[Complex<f64>; ANGLES], n: i64| -> Complex<f64> {
+        g[n.rem_euclid(ANGLES as i64) as usize] / ANGLES as f64
+    };
+    let i_pow = |n: usize| {
+        [
+            Complex::new(1.0, 0.0),
+            Complex::i(),
+            -Complex::new(1.0, 0.0),
+            -Complex::i(),
+        ][n % 4]
+    };
+    let mut out = vec![0.0; COMPONENTS * (MAX_ORDER + 1) * 2];
+    for (c, g) in samples.iter().enumerate() {
+        for n in 0..=MAX_ORDER {
+            let (a, b) = if n == 0 {
+                (mode(g, 0).re, 0.0)
+            } else {
+                let (plus, minus) = (mode(g, n as i64), mode(g, -(n as i64)));
+                (
+                    (i_pow(n) * (plus + minus)).re,
+                    (i_pow(n + 1) * (plus - minus)).re,
+                )
+            };
+            let e = (c * (MAX_ORDER + 1) + n) * 2;
+            out[e] = a * weight;
+            out[e + 1] = b * weight;
+        }
+    }
+    out
+}
+
+/// `J_0(x) .. J_{n-1}(x)` into `j` (x >= 0): forward recurrence from libm's J_0 and
+/// J_1 where it is stable (orders below x), downward recurrence from libm's two
+/// highest orders where that is stable (orders above x), libm's `jn` per order where
+/// the highest orders underflow.
+fn bessel_j_upto(x: f64, j: &mut [f64]) {
+    let n = j.len();
+    j[0] = libm::j0(x);
+    if n == 1 {
+        return;
+    }
+    j[1] = libm::j1(x);
+    let stable = (x.floor() as usize).clamp(2, n);
+    for q in 2..stable {
+        j[q] = 2.0 * (q - 1) as f64 / x * j[q - 1] - j[q - 2];
+    }
+    if stable >= n {
+        return;
+    }
+    let (top, below) = (libm::jn(n as i32 - 1, x), libm::jn(n as i32 - 2, x));
+    if top.abs() < 1e-290 || below.abs() < 1e-290 {
+        for (q, v) in j.iter_mut().enumerate().skip(stable) {
+            *v = libm::jn(q as i32, x);
+        }
+        return;
+    }
+    j[n - 1] = top;
+    j[n - 2] = below;
+    for q in (stable..n - 2).rev() {
+        j[q] = 2.0 * (q + 1) as f64 / x * j[q + 1] - j[q + 2];
+    }
+}
