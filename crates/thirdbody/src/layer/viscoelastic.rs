@@ -50,6 +50,8 @@
 //! along a whole row the stored energies cancel and the branch dissipates exactly
 //! `sum_i p_i (e_out,i - e_in,i)`.
 
+use rayon::prelude::*;
+
 use super::rheology::{CreepForm, Flow};
 use super::{ComplianceLaw, Integration, Layer, LayerLinearisation, LayerResponse};
 
@@ -186,29 +188,36 @@ impl ViscoelasticRows {
 
     /// Layer displacement `w3` of every cell: one sweep per row from the leading edge.
     pub fn row_sweep(&self, p: &[f64], w3: &mut [f64]) {
-        let mut state = vec![0.0; self.branches.len()];
-        for (prow, wrow) in p.chunks_exact(self.nx).zip(w3.chunks_exact_mut(self.nx)) {
-            let mut upstream = 0.0;
-            let mut upstream_forcing = 0.0;
-            state.fill(0.0);
-            for i in (0..self.nx).rev() {
-                let (f, _) = self.forcing(prow[i]);
-                let (q, _) = self.creep(prow[i]);
-                let mut retarded = 0.0;
-                for (b, e) in self.branches.iter().zip(state.iter_mut()) {
-                    let force = b.scale * f;
-                    retarded += b.keep_half * *e + b.take_half * force;
-                    *e = b.keep_full * *e + b.take_full * force;
+        // Rows are independent: one per task, each with its own branch states.
+        let rows = p
+            .par_chunks_exact(self.nx)
+            .zip(w3.par_chunks_exact_mut(self.nx));
+        rows.for_each_init(
+            || vec![0.0; self.branches.len()],
+            |state, (prow, wrow)| {
+                let mut upstream = 0.0;
+                let mut upstream_forcing = 0.0;
+                state.fill(0.0);
+                for i in (0..self.nx).rev() {
+                    let (f, _) = self.forcing(prow[i]);
+                    let (q, _) = self.creep(prow[i]);
+                    let mut retarded = 0.0;
+                    for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                        let force = b.scale * f;
+                        retarded += b.keep_half * *e + b.take_half * force;
+                        *e = b.keep_full * *e + b.take_full * force;
+                    }
+                    if !self.branches.is_empty() {
+                        retarded += self.upwind * (f - upstream_forcing);
+                    }
+                    wrow[i] = self.glassy_scale * f
+                        + self.flow_per_cell * (upstream + 0.5 * q)
+                        + retarded;
+                    upstream += q;
+                    upstream_forcing = f;
                 }
-                if !self.branches.is_empty() {
-                    retarded += self.upwind * (f - upstream_forcing);
-                }
-                wrow[i] =
-                    self.glassy_scale * f + self.flow_per_cell * (upstream + 0.5 * q) + retarded;
-                upstream += q;
-                upstream_forcing = f;
-            }
-        }
+            },
+        );
     }
 
     /// The power dissipated in the layer divided by the sliding speed (a force:
@@ -321,35 +330,35 @@ impl ViscoelasticJacobian {
     /// `out = J dp`.
     pub fn apply(&self, dp: &[f64], out: &mut [f64]) {
         let nx = self.nx;
-        let mut state = vec![0.0; self.keep_half.len()];
-        for (r, (drow, orow)) in dp
-            .chunks_exact(nx)
-            .zip(out.chunks_exact_mut(nx))
-            .enumerate()
-        {
-            let diag = &self.diagonal[r * nx..(r + 1) * nx];
-            let slope = &self.flow_slope[r * nx..(r + 1) * nx];
-            let fslope = &self.forcing_slope[r * nx..(r + 1) * nx];
-            let mut upstream = 0.0;
-            let mut upstream_forcing = 0.0;
-            // While nothing has entered the branches, they carry nothing.
-            let mut live = false;
-            state.fill(0.0);
-            for i in (0..nx).rev() {
-                let df = fslope[i] * drow[i];
-                live |= df != 0.0;
-                let entering = if live {
-                    let e = self.entering(&state);
-                    self.advance(&mut state, df);
-                    e
-                } else {
-                    0.0
-                };
-                orow[i] = diag[i] * drow[i] + upstream + entering - self.upwind * upstream_forcing;
-                upstream += slope[i] * drow[i];
-                upstream_forcing = df;
-            }
-        }
+        let rows = dp.par_chunks_exact(nx).zip(out.par_chunks_exact_mut(nx));
+        rows.enumerate().for_each_init(
+            || vec![0.0; self.keep_half.len()],
+            |state, (r, (drow, orow))| {
+                let diag = &self.diagonal[r * nx..(r + 1) * nx];
+                let slope = &self.flow_slope[r * nx..(r + 1) * nx];
+                let fslope = &self.forcing_slope[r * nx..(r + 1) * nx];
+                let mut upstream = 0.0;
+                let mut upstream_forcing = 0.0;
+                // While nothing has entered the branches, they carry nothing.
+                let mut live = false;
+                state.fill(0.0);
+                for i in (0..nx).rev() {
+                    let df = fslope[i] * drow[i];
+                    live |= df != 0.0;
+                    let entering = if live {
+                        let e = self.entering(state);
+                        self.advance(state, df);
+                        e
+                    } else {
+                        0.0
+                    };
+                    orow[i] =
+                        diag[i] * drow[i] + upstream + entering - self.upwind * upstream_forcing;
+                    upstream += slope[i] * drow[i];
+                    upstream_forcing = df;
+                }
+            },
+        );
     }
 
     /// Solves `(J + extra_diagonal I) y = r` restricted to the cells where `active`
@@ -358,34 +367,37 @@ impl ViscoelasticJacobian {
     /// replaced by `extra_diagonal` (this is a preconditioner, not an exact solve).
     pub fn solve_restricted(&self, extra_diagonal: f64, active: &[bool], r: &[f64], y: &mut [f64]) {
         let nx = self.nx;
-        let mut state = vec![0.0; self.keep_half.len()];
-        for row in 0..r.len() / nx {
-            let base = row * nx;
-            let mut upstream = 0.0;
-            let mut upstream_forcing = 0.0;
-            let mut live = false;
-            state.fill(0.0);
-            for i in (0..nx).rev() {
-                let k = base + i;
-                let entering = if live { self.entering(&state) } else { 0.0 };
-                if active[k] {
-                    let mut d = self.diagonal[k] + extra_diagonal;
-                    if d <= 0.1 * extra_diagonal {
-                        d = extra_diagonal.max(f64::MIN_POSITIVE);
+        let rows = y.par_chunks_exact_mut(nx).enumerate();
+        rows.for_each_init(
+            || vec![0.0; self.keep_half.len()],
+            |state, (row, y)| {
+                let base = row * nx;
+                let mut upstream = 0.0;
+                let mut upstream_forcing = 0.0;
+                let mut live = false;
+                state.fill(0.0);
+                for i in (0..nx).rev() {
+                    let k = base + i;
+                    let entering = if live { self.entering(state) } else { 0.0 };
+                    if active[k] {
+                        let mut d = self.diagonal[k] + extra_diagonal;
+                        if d <= 0.1 * extra_diagonal {
+                            d = extra_diagonal.max(f64::MIN_POSITIVE);
+                        }
+                        y[i] = (r[k] - upstream - entering + self.upwind * upstream_forcing) / d;
+                    } else {
+                        y[i] = 0.0;
                     }
-                    y[k] = (r[k] - upstream - entering + self.upwind * upstream_forcing) / d;
-                } else {
-                    y[k] = 0.0;
+                    let df = self.forcing_slope[k] * y[i];
+                    live |= df != 0.0;
+                    if live {
+                        self.advance(state, df);
+                    }
+                    upstream += self.flow_slope[k] * y[i];
+                    upstream_forcing = df;
                 }
-                let df = self.forcing_slope[k] * y[k];
-                live |= df != 0.0;
-                if live {
-                    self.advance(&mut state, df);
-                }
-                upstream += self.flow_slope[k] * y[k];
-                upstream_forcing = df;
-            }
-        }
+            },
+        );
     }
 }
 
