@@ -55,6 +55,8 @@ enum Command {
     Sweep(SweepArgs),
     /// Join the folders of a sharded sweep (docs/sweeps.md).
     Merge(MergeArgs),
+    /// Print, as BibTeX, the works the computations rely on (cite them with results).
+    Cite,
 }
 
 #[derive(Args)]
@@ -124,6 +126,10 @@ fn run(cli: Cli) -> Result<()> {
         Command::Reproduce(args) => reproduce::run(&args),
         Command::Sweep(args) => sweep::sweep_command(&args),
         Command::Merge(args) => sweep::merge_command(&args),
+        Command::Cite => {
+            print!("{}", thirdbody::provenance::REFERENCES);
+            Ok(())
+        }
     }
 }
 

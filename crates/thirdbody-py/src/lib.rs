@@ -176,12 +176,19 @@ fn solve(py: Python<'_>, case: &Case) -> PyResult<Solution> {
     })
 }
 
+/// The works the computations rely on, as BibTeX (what `thirdbody cite` prints).
+#[pyfunction]
+fn cite() -> &'static str {
+    thirdbody::provenance::REFERENCES
+}
+
 /// The compiled part of the `thirdbody` package.
 #[pymodule]
 fn _thirdbody(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Case>()?;
     m.add_class::<Solution>()?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
-    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(cite, m)?)?;
+    m.add("__version__", thirdbody::provenance::VERSION)?;
     Ok(())
 }

@@ -46,8 +46,16 @@ def close(a, b, path=""):
         assert a == b, f"{path}: {a} vs {b}"
 
 
-def test_import_gives_the_version():
+def test_import_gives_the_version_and_the_references():
     assert thirdbody.__version__.count(".") == 2
+    assert thirdbody.cite() == cli("cite").stdout
+
+
+def test_the_summary_carries_the_provenance():
+    summary = thirdbody.solve(thirdbody.Case.from_file(ROOT / "examples" / "hertz.toml")).summary
+    assert summary["thirdbody_version"] == thirdbody.__version__
+    assert len(summary["case_hash"]) == 64
+    assert summary["commit"] is None or len(summary["commit"]) == 40
 
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=[e.stem for e in EXAMPLES])

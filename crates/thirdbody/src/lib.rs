@@ -46,6 +46,7 @@ pub(crate) mod krylov;
 pub mod layer;
 pub mod operator;
 pub mod problem;
+pub mod provenance;
 #[cfg(feature = "reference")]
 pub mod reference;
 pub mod report;

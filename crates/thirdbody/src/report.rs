@@ -42,6 +42,12 @@ pub struct Report {
     /// [`model_warnings`]); absent when there is nothing to say.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// The thirdbody version that computed the result.
+    pub thirdbody_version: &'static str,
+    /// The git commit it was built from (`null` when not built from a checkout).
+    pub commit: Option<&'static str>,
+    /// SHA-256 of the canonical case ([`crate::provenance::case_hash`]).
+    pub case_hash: String,
 }
 
 /// Largest contact half-length, as a fraction of the slider's radius, for which the
@@ -192,6 +198,9 @@ impl Report {
             window_y_max: cy + wy,
             stress: stress.map(StressReport::of),
             warnings: model_warnings(case, solution),
+            thirdbody_version: crate::provenance::VERSION,
+            commit: crate::provenance::commit(),
+            case_hash: crate::provenance::case_hash(case),
         }
     }
 }

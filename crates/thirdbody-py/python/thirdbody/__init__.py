@@ -9,6 +9,6 @@ The same engine as the ``thirdbody`` command-line program (Lubricants 2023, 11, 
     solution.pressure            # numpy array, shape (ny, nx)
 """
 
-from ._thirdbody import Case, Solution, solve, __version__
+from ._thirdbody import Case, Solution, cite, solve, __version__
 
-__all__ = ["Case", "Solution", "solve", "__version__"]
+__all__ = ["Case", "Solution", "cite", "solve", "__version__"]
