@@ -17,6 +17,7 @@ macro_rules! say {
     }};
 }
 
+pub mod app;
 pub mod atomic;
 pub mod heightmap;
 pub mod memory;

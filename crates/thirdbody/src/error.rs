@@ -61,6 +61,9 @@ pub enum Error {
         /// What overflowed and which keys to check.
         why: String,
     },
+    /// The progress observer asked the solve to stop (a user's interrupt).
+    #[error("the solve was interrupted")]
+    Interrupted,
     /// The contact reached the edge of the computational window.
     #[error(
         "the contact reaches the edge of the window (half widths {half_width_x:.4e} x \

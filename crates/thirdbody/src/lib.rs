@@ -18,14 +18,16 @@
 //! (FFT plans, kernel spectra) lives in a [`KernelCache`] the caller owns.
 //!
 //! ```
-//! use thirdbody::{solve_with, KernelCache, SolverParams};
+//! use std::ops::ControlFlow;
+//! use thirdbody::{solve_with, KernelCache, Progress, SolverParams};
 //! let text = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
 //!             poisson = 0.3\n[loading]\nnormal_load = 5e-6\n[grid]\ncells = [32, 32]\n";
 //! let case = thirdbody::case_file::parse_case_file(text, &mut |_, _| unreachable!())
 //!     .unwrap()
 //!     .case;
 //! let mut kernels = KernelCache::new();
-//! let solution = solve_with(&case, &SolverParams::default(), &mut kernels, &mut |_| {}).unwrap();
+//! let mut keep_going = |_: Progress| ControlFlow::Continue(());
+//! let solution = solve_with(&case, &SolverParams::default(), &mut kernels, &mut keep_going).unwrap();
 //! // Hertz: p_max = (6 Q E*^2 / pi^3 R^2)^(1/3) to the grid's accuracy.
 //! let e_star = 1.0 / (1.0 - 0.09);
 //! let hertz = (6.0 * 5e-6 * e_star * e_star / std::f64::consts::PI.powi(3)).cbrt();

@@ -212,13 +212,35 @@ pub(crate) fn finish(
 
 /// Solves case `index`; every failure becomes a `failed` record.
 fn solve_case(sweep: &Sweep, index: usize, kernels: &mut KernelCache) -> Record {
+    solve_record(
+        sweep.id(index).to_string(),
+        index,
+        sweep.labels(index),
+        || sweep.parse_case(index),
+        kernels,
+    )
+}
+
+/// The record of one sweep case: `parse` gives its case file (so that a worker
+/// elsewhere, e.g. a Python executor's, can rebuild it from its text), solved with
+/// sequential FFTs as one of many; every failure, a panic included, becomes a
+/// `failed` record with the message.
+pub fn solve_record(
+    case: String,
+    index: usize,
+    settings: Vec<String>,
+    parse: impl FnOnce() -> thirdbody::Result<thirdbody::case_file::CaseFile>,
+    kernels: &mut KernelCache,
+) -> Record {
     let start = Instant::now();
     let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<serde_json::Value> {
-        let file = sweep.parse_case(index)?;
+        let file = parse()?;
         let mut params = file.solver;
         params.parallelism = Parallelism::Sequential;
         let solve_start = Instant::now();
-        let solution = thirdbody::solve_with(&file.case, &params, kernels, &mut |_| {})?;
+        let solution = thirdbody::solve_with(&file.case, &params, kernels, &mut |_| {
+            std::ops::ControlFlow::Continue(())
+        })?;
         let mut summary = summary_json(
             &file.case,
             &solution,
@@ -258,9 +280,9 @@ fn solve_case(sweep: &Sweep, index: usize, kernels: &mut KernelCache) -> Record 
         }
     };
     Record {
-        case: sweep.id(index).to_string(),
+        case,
         index,
-        settings: sweep.labels(index),
+        settings,
         status,
         error,
         summary,

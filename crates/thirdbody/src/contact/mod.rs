@@ -16,6 +16,8 @@ mod newton;
 mod polonsky_keer;
 pub(crate) mod window;
 
+use std::ops::ControlFlow;
+
 use crate::case::Case;
 use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
@@ -104,7 +106,9 @@ impl SolverParams {
     }
 }
 
-/// What a solve reports while it runs.
+/// What a solve reports while it runs. The observer answers with
+/// [`ControlFlow::Break`] to stop the solve, which then returns
+/// [`Error::Interrupted`] (a front end's Ctrl-C).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Progress {
     /// A new window is being solved.
@@ -165,8 +169,10 @@ pub(crate) fn relative_complementarity_residual(p: &[f64], g: &[f64], w: &[f64])
 pub(crate) struct Monitor<'a> {
     tolerance: f64,
     stagnation_window: usize,
-    observer: &'a mut dyn FnMut(Progress),
+    observer: &'a mut dyn FnMut(Progress) -> ControlFlow<()>,
     history: Vec<f64>,
+    /// The observer asked the solve to stop.
+    interrupted: bool,
 }
 
 impl<'a> Monitor<'a> {
@@ -175,28 +181,30 @@ impl<'a> Monitor<'a> {
     pub(crate) fn new(
         params: &SolverParams,
         stagnation_window: usize,
-        observer: &'a mut dyn FnMut(Progress),
+        observer: &'a mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Self {
         Monitor {
             tolerance: params.tolerance,
             stagnation_window,
             observer,
             history: Vec::new(),
+            interrupted: false,
         }
     }
 
     /// Records the residual after `iteration`; true when it meets the tolerance.
     pub(crate) fn converged(&mut self, iteration: usize, residual: f64) -> bool {
         self.history.push(residual);
-        (self.observer)(Progress::Iteration {
+        let flow = (self.observer)(Progress::Iteration {
             iteration,
             residual,
         });
-        residual <= self.tolerance
+        self.interrupted |= flow.is_break();
+        residual <= self.tolerance && !self.interrupted
     }
 
-    /// The error that stops the solve short of the tolerance, if it should stop: a
-    /// residual that is not finite (at once; the case's values overflow), or one that
+    /// The error that stops the solve short of the tolerance, if it should stop: the
+    /// observer's request ([`Error::Interrupted`]), a residual that is not finite (at once; the case's values overflow), or one that
     /// has stopped falling ([`Monitor::stagnated`]; `diagnosis` is the model's own
     /// explanation, if any).
     pub(crate) fn stop(
@@ -205,6 +213,9 @@ impl<'a> Monitor<'a> {
         residual: f64,
         diagnosis: impl FnOnce() -> Option<String>,
     ) -> Option<Error> {
+        if self.interrupted {
+            return Some(Error::Interrupted);
+        }
         if !self.last_residual().is_finite() {
             return Some(Error::OutOfRange {
                 why: OVERFLOW.into(),
@@ -292,14 +303,16 @@ impl<'a> Monitor<'a> {
 
 /// Solves a case with a kernel cache of its own.
 pub fn solve(case: &Case, params: &SolverParams) -> Result<Solution> {
-    solve_with(case, params, &mut KernelCache::new(), &mut |_| {})
+    solve_with(case, params, &mut KernelCache::new(), &mut |_| {
+        ControlFlow::Continue(())
+    })
 }
 
 /// Solves a case with a kernel cache of its own, reporting progress to `observer`.
 pub fn solve_observed(
     case: &Case,
     params: &SolverParams,
-    observer: &mut dyn FnMut(Progress),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<Solution> {
     solve_with(case, params, &mut KernelCache::new(), observer)
 }
@@ -312,7 +325,7 @@ pub fn solve_with(
     case: &Case,
     params: &SolverParams,
     kernels: &mut KernelCache,
-    observer: &mut dyn FnMut(Progress),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<Solution> {
     case.validate()?;
     params.validate()?;
@@ -320,7 +333,9 @@ pub fn solve_with(
     let mut grid = window::initial_window(case)?;
     let mut warm: Option<(Grid, Vec<f64>)> = None;
     for attempt in 1..=params.max_windows.max(1) {
-        observer(Progress::Window { attempt, grid });
+        if observer(Progress::Window { attempt, grid }).is_break() {
+            return Err(Error::Interrupted);
+        }
         let mut problem = case.assemble(&grid, kernels, params.parallelism)?;
         if fixed && window::lowest_point_on_edge(&grid, &problem.shape) {
             // The contact holds the slider's lowest point (where it first touches):
@@ -367,7 +382,7 @@ pub fn solve_problem(
     problem: &mut ContactProblem,
     warm: Option<&(Grid, Vec<f64>)>,
     params: &SolverParams,
-    observer: &mut dyn FnMut(Progress),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<Solution> {
     let grid = problem.grid;
     let mut p = match warm {
@@ -480,7 +495,10 @@ fn finish(
 mod tests {
     use super::*;
 
-    fn monitor_after(residuals: &[f64], observer: &mut dyn FnMut(Progress)) -> bool {
+    fn monitor_after(
+        residuals: &[f64],
+        observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> bool {
         let params = SolverParams::default();
         let mut m = Monitor::new(&params, 50, observer);
         for (k, &r) in residuals.iter().enumerate() {
@@ -494,15 +512,52 @@ mod tests {
         let mut seen = 0;
         // -0.1% per iteration (the issue's runaway Newton solve): stagnated.
         let creeping: Vec<f64> = (0..60).map(|k| 0.4 * 0.999f64.powi(k)).collect();
-        assert!(monitor_after(&creeping, &mut |_| seen += 1));
+        assert!(monitor_after(&creeping, &mut |_| {
+            seen += 1;
+            ControlFlow::Continue(())
+        }));
         assert_eq!(seen, 60, "every iteration is reported");
         // Slow but steady CG-like progress (a factor 10 per 60 iterations) is not.
         let slow: Vec<f64> = (0..200).map(|k| 10f64.powf(-k as f64 / 60.0)).collect();
-        assert!(!monitor_after(&slow, &mut |_| {}));
+        assert!(!monitor_after(&slow, &mut |_| ControlFlow::Continue(())));
         // Too few iterations to judge.
-        assert!(!monitor_after(&creeping[..40], &mut |_| {}));
+        assert!(!monitor_after(&creeping[..40], &mut |_| {
+            ControlFlow::Continue(())
+        }));
         // An oscillating residual that keeps a best value is stagnation.
         let oscillating: Vec<f64> = (0..80).map(|k| 1e-3 * (1.0 + (k % 2) as f64)).collect();
-        assert!(monitor_after(&oscillating, &mut |_| {}));
+        assert!(monitor_after(&oscillating, &mut |_| ControlFlow::Continue(
+            ()
+        )));
+    }
+
+    #[test]
+    fn an_observer_that_breaks_interrupts_the_solve() {
+        let text = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
+                    poisson = 0.3\n[loading]\nnormal_load = 5e-6\n[grid]\ncells = [32, 32]\n";
+        let case = crate::case_file::parse_case_file(text, &mut |_, _| unreachable!())
+            .unwrap()
+            .case;
+        let mut iterations = 0;
+        let result = solve_observed(&case, &SolverParams::default(), &mut |p| match p {
+            Progress::Iteration { .. } => {
+                iterations += 1;
+                if iterations == 2 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            }
+            Progress::Window { .. } => ControlFlow::Continue(()),
+        });
+        assert!(matches!(result, Err(Error::Interrupted)), "{result:?}");
+        assert_eq!(iterations, 2, "the solve stops at the first break");
+        let mut windows = 0;
+        let result = solve_observed(&case, &SolverParams::default(), &mut |_| {
+            windows += 1;
+            ControlFlow::Break(())
+        });
+        assert!(matches!(result, Err(Error::Interrupted)));
+        assert_eq!(windows, 1);
     }
 }

@@ -11,6 +11,8 @@
 //! its Schur complement. When the layer dominates the body (slow sliding, soft
 //! layer) it is nearly exact and GMRES needs a handful of products per step.
 
+use std::ops::ControlFlow;
+
 use super::{relative_complementarity_residual, Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
@@ -60,7 +62,7 @@ pub(crate) fn semismooth_newton(
     problem: &mut ContactProblem,
     p: &mut [f64],
     params: &SolverParams,
-    observer: &mut dyn FnMut(Progress),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<SolveReport> {
     let f = &problem.shape;
     let op = problem.influence.as_mut();

@@ -6,6 +6,8 @@
 //! contact. The product `A t` of each step also updates `A p` when the projection
 //! leaves the step unchanged, so late iterations cost one convolution each.
 
+use std::ops::ControlFlow;
+
 use super::{relative_complementarity_residual, Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
@@ -25,7 +27,7 @@ pub(crate) fn polonsky_keer(
     winkler: f64,
     p: &mut [f64],
     params: &SolverParams,
-    observer: &mut dyn FnMut(Progress),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<SolveReport> {
     let f = &problem.shape;
     let op = problem.influence.as_mut();

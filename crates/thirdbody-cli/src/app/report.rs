@@ -9,7 +9,7 @@ use thirdbody::{Case, Solution};
 pub fn human_summary(case: &Case, solution: &Solution, solve_seconds: f64) -> String {
     let s = solution.summary();
     let info = &solution.info;
-    let l = thirdbody_cli::units::labels(case.units);
+    let l = crate::units::labels(case.units);
     let (len, area, force, stress, moment) = (
         l.length_unit,
         l.area_unit,

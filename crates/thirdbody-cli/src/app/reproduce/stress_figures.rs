@@ -13,7 +13,7 @@ use super::render::{
 };
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, Resolution};
-use crate::section::{self, SectionId};
+use crate::app::section::{self, SectionId};
 
 /// Published values of Fig. 10's caption (printed negative) and the text's increase.
 const PAPER_TAU1: [f64; 2] = [0.000982, 0.00132];

@@ -28,9 +28,9 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use crate::BadInput;
+use crate::app::BadInput;
+use crate::atomic::Staging;
 use solutions::Solutions;
-use thirdbody_cli::atomic::Staging;
 
 /// A figure of the paper: takes its cases' solutions from the run's [`Solutions`],
 /// stages its files and returns what the report says of it.
@@ -129,7 +129,7 @@ impl FigureFiles<'_> {
         &mut self,
         name: &str,
         header: [&str; 3],
-        series: &[thirdbody_cli::plot::Series],
+        series: &[crate::plot::Series],
     ) -> Result<()> {
         self.write(name, |p| {
             let mut w = BufWriter::new(File::create(p)?);
@@ -211,7 +211,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         .commit()
         .context("cannot move the reproduced figures into place")?;
     if !args.quiet {
-        thirdbody_cli::say!(
+        crate::say!(
             "reproduced {} figures in {seconds:.0} s; see {}",
             reports.len(),
             args.out.join("report.md").display()

@@ -10,17 +10,17 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::heightmap;
 use anyhow::{Context, Result};
 use clap::Args;
 use ndarray::Array2;
 use serde_json::Value;
 use thirdbody::case_file::parse_case_file;
 use thirdbody::{Grid, KernelCache};
-use thirdbody_cli::heightmap;
 
-use crate::outputs::{self, Formats};
-use crate::{report, stress_outputs, BadInput};
-use thirdbody_cli::atomic::Staging;
+use crate::app::outputs::{self, Formats};
+use crate::app::{report, stress_outputs, BadInput};
+use crate::atomic::Staging;
 
 /// Arguments of `thirdbody stress`.
 #[derive(Args)]
@@ -157,18 +157,18 @@ pub fn run(args: &StressArgs) -> Result<()> {
     let summary_path = dir.join("summary.json");
     let mut summary: Value = serde_json::from_str(&read_text(&summary_path, "the summary")?)
         .map_err(|e| bad(format!("{}: {e}", summary_path.display())))?;
-    thirdbody_cli::memory::check(
+    crate::memory::check(
         &file.case,
         Some(&request),
         1,
-        thirdbody_cli::memory::available_bytes(),
+        crate::memory::available_bytes(),
     )
     .map_err(bad)?;
     let solution = thirdbody::solve_with(
         &file.case,
         &file.solver,
         &mut KernelCache::new(),
-        &mut |_| {},
+        &mut |_| std::ops::ControlFlow::Continue(()),
     )?;
     let pressure = read_pressure(dir, &solution.grid)?;
     let scale = solution.pressure.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -198,8 +198,8 @@ pub fn run(args: &StressArgs) -> Result<()> {
     outputs::write_summary(&mut out, &summary)?;
     out.commit()?;
     if !args.quiet {
-        thirdbody_cli::say!("{}", report::stress_summary(&results.summary));
-        thirdbody_cli::say!("stresses in {}", dir.display());
+        crate::say!("{}", report::stress_summary(&results.summary));
+        crate::say!("stresses in {}", dir.display());
     }
     Ok(())
 }

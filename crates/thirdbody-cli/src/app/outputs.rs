@@ -4,9 +4,9 @@
 //! rows along y (`pressure.npy`, `body_displacement.npy`, `gap.npy`, and with a
 //! layer `compliance.npy` and `layer_displacement.npy`), the pressure as CSV
 //! (`x,y,pressure`, one line per cell), the surface fields as VTK image data
-//! (`surface.vti`), the stresses asked for (see [`crate::stress_outputs`]) and the
+//! (`surface.vti`), the stresses asked for (see [`crate::app::stress_outputs`]) and the
 //! plots. `--format` chooses among NPY, CSV and VTK. All are staged and renamed into
-//! place together (see [`thirdbody_cli::atomic`]).
+//! place together (see [`crate::atomic`]).
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -18,11 +18,11 @@ use serde_json::Value;
 use thirdbody::stress::StressResults;
 use thirdbody::{Case, Grid, Solution};
 
-use crate::stress_outputs;
-use thirdbody_cli::atomic::Staging;
-use thirdbody_cli::plot::{self, Series};
-use thirdbody_cli::units;
-use thirdbody_cli::vtk;
+use crate::app::stress_outputs;
+use crate::atomic::Staging;
+use crate::plot::{self, Series};
+use crate::units;
+use crate::vtk;
 
 /// Which data formats to write (`--format npy,csv,vtk`; all by default). The JSON
 /// summary and the plots are always written.

@@ -2,19 +2,19 @@
 //! section with theirs, the rows the paper plots (pressure and sigma_x along x
 //! through y = 0), the parameter-study curves, and the report's entries.
 
+use crate::plot::{self, Series};
 use anyhow::Result;
 use thirdbody::stress::StressField;
 use thirdbody::Solution;
-use thirdbody_cli::plot::{self, Series};
 
+use crate::units::{self, Labels};
 use thirdbody::Units;
-use thirdbody_cli::units::{self, Labels};
 
 use super::catalogue::Study;
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, KeyNumber};
-use crate::outputs::row_nearest_y0;
-use crate::stress_outputs::nearest;
+use crate::app::outputs::row_nearest_y0;
+use crate::app::stress_outputs::nearest;
 
 /// The paper's dimensionless labels of plot axes, colour bars and CSV columns.
 pub const L: &Labels = units::labels(Units::Dimensionless);

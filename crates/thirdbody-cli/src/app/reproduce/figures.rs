@@ -3,9 +3,9 @@
 //! solutions from [`Solutions`], stages its plots (PNG + SVG) and data (CSV), and
 //! returns what the report says of it.
 
+use crate::plot::{self, Series};
 use anyhow::Result;
 use thirdbody::Case;
-use thirdbody_cli::plot::{self, Series};
 
 use super::catalogue::{self, parameter_line};
 use super::render::{

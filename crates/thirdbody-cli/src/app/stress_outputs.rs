@@ -12,18 +12,18 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
+use crate::plot::{self, Series};
+use crate::vtk;
 use anyhow::{Context, Result};
 use ndarray::Array4;
 use serde_json::Value;
 use thirdbody::report::StressReport;
 use thirdbody::stress::{Side, StressField, StressResults};
 use thirdbody::Units;
-use thirdbody_cli::plot::{self, Series};
-use thirdbody_cli::vtk;
 
-use crate::outputs::Formats;
-use crate::section::{self, SectionId, SectionLabels};
-use thirdbody_cli::atomic::Staging;
+use crate::app::outputs::Formats;
+use crate::app::section::{self, SectionId, SectionLabels};
+use crate::atomic::Staging;
 
 /// Names of the eleven stored fields, in storage order.
 pub const FIELD_NAMES: [&str; 11] = [
@@ -61,7 +61,7 @@ pub fn write_stress(
     units: Units,
     formats: Formats,
 ) -> Result<()> {
-    let l = thirdbody_cli::units::labels(units);
+    let l = crate::units::labels(units);
     let sections = section::sections(results)?;
     for &(id, f) in &sections {
         let name = id.name();
