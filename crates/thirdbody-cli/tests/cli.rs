@@ -408,3 +408,44 @@ fn solver_failures_exit_with_1_and_leave_nothing() {
     );
     assert_no_output(&run.out_dir);
 }
+
+/// The shared list of bad case files (`tests/data/bad_inputs.json`, also run through
+/// the Python package): each gives its exit code, one `error:` line that names what
+/// is wrong, and no output.
+#[test]
+fn the_shared_bad_input_list_exits_cleanly_with_one_line() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let list: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("tests/data/bad_inputs.json")).unwrap(),
+    )
+    .unwrap();
+    let cases = list["cases"].as_array().unwrap();
+    assert!(cases.len() >= 30);
+    for entry in cases {
+        let name = entry["name"].as_str().unwrap();
+        let example = entry["example"].as_str().unwrap();
+        let mut text =
+            std::fs::read_to_string(root.join(format!("../../examples/{example}.toml"))).unwrap();
+        for pair in entry["replace"].as_array().unwrap() {
+            let (old, new) = (pair[0].as_str().unwrap(), pair[1].as_str().unwrap());
+            assert!(text.contains(old), "{name}: the example has no {old:?}");
+            text = text.replacen(old, new, 1);
+        }
+        let run = solve(&text, &[], &["--format", "npy"]);
+        let err = run.stderr();
+        assert_eq!(
+            run.code(),
+            entry["exit"].as_i64().map(|c| c as i32),
+            "{name}: {err}"
+        );
+        let lines: Vec<&str> = err.lines().collect();
+        assert_eq!(lines.len(), 1, "{name}: not one line: {err:?}");
+        assert!(lines[0].starts_with("error: "), "{name}: {err}");
+        let expect = entry["expect"].as_str().unwrap();
+        assert!(
+            lines[0].contains(expect),
+            "{name}: {err:?} lacks {expect:?}"
+        );
+        assert_no_output(&run.out_dir);
+    }
+}

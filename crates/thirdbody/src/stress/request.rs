@@ -156,6 +156,10 @@ pub struct StressSummary {
     pub interface_sigma_x_max_substrate: Option<f64>,
 }
 
+/// Deepest `stress.max_depth` allowed, in widths of the solved window: far deeper
+/// the stresses are zero to double precision and the depths could overflow.
+const MAX_DEPTH_IN_WINDOWS: f64 = 100.0;
+
 /// Computed sections and their summary.
 #[derive(Debug, Clone)]
 pub struct StressResults {
@@ -275,7 +279,7 @@ impl StressRequest {
             .unwrap_or(DEFAULT_DEPTH_IN_HALF_LENGTHS * half_length);
         let n = self.depth_points;
         (0..n)
-            .map(|k| deepest * k as f64 / (n - 1) as f64)
+            .map(|k| deepest * (k as f64 / (n - 1) as f64))
             .collect()
     }
 
@@ -294,6 +298,21 @@ impl StressRequest {
                 "stress.y",
                 self.y,
                 &format!("a y inside the solved window, {y_lo:.4e} <= y <= {y_hi:.4e}"),
+            ));
+        }
+        let window = (grid.nx.max(grid.ny)) as f64 * grid.cell;
+        if let Some(z) = self
+            .max_depth
+            .filter(|&z| z > MAX_DEPTH_IN_WINDOWS * window)
+        {
+            return Err(Error::invalid(
+                "stress.max_depth",
+                z,
+                &format!(
+                    "a depth > 0 of at most {MAX_DEPTH_IN_WINDOWS} window widths, {:.4e} \
+                     (the stresses vanish far below the contact)",
+                    MAX_DEPTH_IN_WINDOWS * window
+                ),
             ));
         }
         let depths = match self.max_depth {
