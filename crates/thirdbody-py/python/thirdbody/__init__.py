@@ -7,8 +7,12 @@ The same engine as the ``thirdbody`` command-line program (Lubricants 2023, 11, 
     solution = thirdbody.solve(case)
     solution.summary["friction_coefficient"]
     solution.pressure            # numpy array, shape (ny, nx)
+    table = thirdbody.sweep(case, {"loading.velocity": "1e-3..1e-1:5"})
+
+See docs/python.md for the tutorial.
 """
 
 from ._thirdbody import Case, Solution, cite, solve, __version__
+from ._sweep import sweep
 
-__all__ = ["Case", "Solution", "cite", "solve", "__version__"]
+__all__ = ["Case", "Solution", "cite", "solve", "sweep", "__version__"]
