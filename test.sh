@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Every test: the Rust workspace, then the Python package built into a fresh virtual
-# environment under target/ (maturin, pytest and numpy from the package index).
+# environment under target/ (maturin, pytest, numpy and the package's `test` extra:
+# pandas, xarray, scipy, matplotlib, dask[distributed], pytest-timeout, all from the
+# package index).
 set -euo pipefail
 cd "$(dirname "$0")"
 cargo test --release --workspace
@@ -9,5 +11,5 @@ rm -rf "$venv"
 python3 -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --upgrade pip
 "$venv/bin/python" -m pip install --quiet maturin pytest numpy
-"$venv/bin/python" -m pip install --quiet ./crates/thirdbody-py
-THIRDBODY_BIN="$PWD/target/release/thirdbody" "$venv/bin/python" -m pytest -q crates/thirdbody-py/tests
+"$venv/bin/python" -m pip install --quiet "./crates/thirdbody-py[test]"
+THIRDBODY_BIN="$PWD/target/release/thirdbody" "$venv/bin/python" -m pytest -q --timeout 600 crates/thirdbody-py/tests
