@@ -96,6 +96,15 @@ fn to_toml(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     )))
 }
 
+/// `folder` (the working directory when `None` or empty) as an absolute path, so that
+/// a case pickled to a worker started elsewhere (a Dask or Slurm worker) still finds
+/// its height maps.
+fn absolute_folder(folder: Option<&Path>) -> PathBuf {
+    let folder = folder.filter(|f| !f.as_os_str().is_empty());
+    let folder = folder.unwrap_or(Path::new("."));
+    std::path::absolute(folder).unwrap_or_else(|_| folder.to_path_buf())
+}
+
 impl Case {
     fn from_text(text: String, base: PathBuf) -> PyResult<Self> {
         let file = parse(&text, &base)?;
@@ -126,7 +135,7 @@ impl Case {
         let toml::Value::Table(table) = to_toml("", py_sections.as_any())? else {
             unreachable!("a dict converts to a table")
         };
-        Self::from_text(table.to_string(), PathBuf::from("."))
+        Self::from_text(table.to_string(), absolute_folder(None))
     }
 
     /// A case from the text of a TOML case file (docs/case-file.md); relative
@@ -134,10 +143,7 @@ impl Case {
     #[staticmethod]
     #[pyo3(signature = (text, base_dir=None))]
     fn from_toml(text: &str, base_dir: Option<PathBuf>) -> PyResult<Self> {
-        Self::from_text(
-            text.to_owned(),
-            base_dir.unwrap_or_else(|| PathBuf::from(".")),
-        )
+        Self::from_text(text.to_owned(), absolute_folder(base_dir.as_deref()))
     }
 
     /// A case from a TOML case file on disk (height maps read beside it).
@@ -146,8 +152,7 @@ impl Case {
         let text = std::fs::read_to_string(&path).map_err(|e| {
             PyValueError::new_err(format!("cannot read case file {}: {e}", path.display()))
         })?;
-        let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        Self::from_text(text, base)
+        Self::from_text(text, absolute_folder(path.parent()))
     }
 
     /// A variant with some keys changed: dotted keys as `thirdbody sweep --vary`

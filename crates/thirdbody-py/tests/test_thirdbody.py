@@ -396,3 +396,29 @@ def test_a_thousand_small_solves_leave_memory_flat():
     grown = _rss_bytes() - before
     # One 32 x 32 solve holds ~100 kB; a leak of it per solve would be ~100 MB.
     assert grown < 8 << 20, f"resident memory grew {grown / 2**20:.1f} MiB over 1000 solves"
+
+
+def test_a_height_map_case_keeps_its_folder_when_the_working_directory_changes(tmp_path,
+                                                                              monkeypatch):
+    import pickle
+
+    # A paraboloid of radius 1 on 201 x 201 nodes 2.5e-4 apart (finer than the
+    # contact's 0.015 radius; a coarser map's bilinear kinks raise the peak pressure).
+    s = (np.arange(201) - 100) * 2.5e-4
+    heights = (s[None, :] ** 2 + s[:, None] ** 2) / 2.0
+    folder = tmp_path / "study"
+    folder.mkdir()
+    np.save(folder / "map.npy", heights)
+    text = (ROOT / "examples" / "hertz.toml").read_text()
+    text = text.replace('shape = "sphere"\nradius = 1.0',
+                        'shape = "height_map"\nfile = "map.npy"\ncell_size = 2.5e-4')
+    (folder / "case.toml").write_text(text)
+    monkeypatch.chdir(folder)
+    case = thirdbody.Case.from_file("case.toml")     # relative, as a user types it
+    monkeypatch.chdir(tmp_path)                      # a worker started elsewhere
+    again = pickle.loads(pickle.dumps(case))
+    sphere = thirdbody.solve(thirdbody.Case.from_file(ROOT / "examples" / "hertz.toml"))
+    mapped = thirdbody.solve(again).summary
+    # The sphere's own solve; Hertz's D = 2.267e-4 (examples/hertz.toml) as well.
+    assert math.isclose(mapped["penetration"], sphere.summary["penetration"], rel_tol=1e-3)
+    assert math.isclose(mapped["max_pressure"], sphere.summary["max_pressure"], rel_tol=2e-3)

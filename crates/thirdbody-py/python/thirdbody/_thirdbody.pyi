@@ -1,38 +1,129 @@
+"""Type stubs of the compiled module ``thirdbody._thirdbody`` (crates/thirdbody-py/src/lib.rs)."""
+
 from os import PathLike
-from typing import Any, Dict, Optional, Tuple, Union
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
+_Path = Union[str, "PathLike[str]"]
+_Array = npt.NDArray[np.float64]
+
 __version__: str
 
 class Case:
+    """A contact case, exactly as a case file gives it. Immutable: ``with_`` derives
+    variants. Picklable (its text and height-map folder)."""
+
+    def __new__(cls, sections: Optional[Dict[str, Any]] = None, **kwargs: Any) -> "Case":
+        """A case from its sections as one dict and/or keyword arguments, mirroring
+        the case file: ``Case(slider={"shape": "sphere", "radius": 1.0}, ...)``.
+        Raises ``ValueError`` as the case-file parser does."""
     @staticmethod
-    def from_toml(text: str) -> "Case": ...
+    def from_toml(text: str, base_dir: Optional[_Path] = None) -> "Case":
+        """A case from a case file's text; relative height-map paths are read from
+        ``base_dir`` (default: the working directory). A ``[sweep]`` section is set
+        aside."""
     @staticmethod
-    def from_file(path: Union[str, PathLike[str]]) -> "Case": ...
+    def from_file(path: _Path) -> "Case":
+        """A case from a TOML case file (height maps read beside it)."""
+    def with_(self, changes: Optional[Dict[str, Any]] = None, **kwargs: Any) -> "Case":
+        """A variant with dotted keys changed (``{"loading.velocity": 1e-2}``, or
+        ``loading__velocity=1e-2``); ``None`` removes a key."""
     @property
-    def toml(self) -> str: ...
+    def toml(self) -> str:
+        """The case file's text this case was parsed from."""
     @property
-    def cells(self) -> Tuple[int, int]: ...
+    def cells(self) -> Tuple[int, int]:
+        """The grid's cell counts ``(nx, ny)``."""
+    @property
+    def case_hash(self) -> str:
+        """SHA-256 of the canonical case (``case_hash`` of summary.json)."""
+    def __reduce__(self) -> Tuple[Callable[[str, Path], "Case"], Tuple[str, Path]]: ...
 
 class Solution:
-    @property
-    def summary(self) -> Dict[str, Any]: ...
-    @property
-    def pressure(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def gap(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def body_displacement(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def layer_displacement(self) -> Optional[npt.NDArray[np.float64]]: ...
-    @property
-    def compliance(self) -> Optional[npt.NDArray[np.float64]]: ...
-    @property
-    def x(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def y(self) -> npt.NDArray[np.float64]: ...
+    """A solved contact; made by :func:`solve`. Arrays are read-only, shape ``(ny, nx)``."""
 
-def solve(case: Case) -> Solution: ...
-def cite() -> str: ...
+    @property
+    def summary(self) -> Dict[str, Any]:
+        """The keys and values of ``summary.json``."""
+    @property
+    def pressure(self) -> _Array:
+        """Contact pressure."""
+    @property
+    def gap(self) -> _Array:
+        """Gap between slider and deformed surface."""
+    @property
+    def body_displacement(self) -> _Array:
+        """Elastic body's surface displacement."""
+    @property
+    def layer_displacement(self) -> Optional[_Array]:
+        """Layer's displacement (``None`` without a layer)."""
+    @property
+    def compliance(self) -> Optional[_Array]:
+        """Layer's compliance ``C[p]`` (``None`` without a layer)."""
+    @property
+    def x(self) -> _Array:
+        """x of the cell centres, shape ``(nx,)``."""
+    @property
+    def y(self) -> _Array:
+        """y of the cell centres, shape ``(ny,)``."""
+    def stresses(
+        self,
+        section: str,
+        *,
+        y: float = 0.0,
+        z: float = 0.0,
+        depths: Optional[Sequence[float]] = None,
+        side: str = "coating",
+    ) -> Dict[str, _Array]:
+        """Subsurface stresses on one section: ``"xz"`` (plane ``y``, at ``depths``),
+        ``"surface"``, ``"plane"`` (depth ``z``), ``"block"`` (at ``depths``) or
+        ``"interface"`` (``side`` = ``"coating"`` or ``"substrate"``). Keys ``x``,
+        ``y``, ``z`` (1-D) and ``sigma_x, sigma_y, sigma_z, tau_xy, tau_xz, tau_yz,
+        s1, s2, s3, tau1, von_mises``, each of shape ``(len(z), len(y), len(x))``."""
+    def case_stresses(self) -> Dict[str, Dict[str, _Array]]:
+        """The sections of the case's ``[stress]`` section, by name (as the CLI's
+        file names), each a dict as :meth:`stresses` returns. ``ValueError`` without
+        a ``[stress]`` section or after ``solve(..., stresses=False)``."""
+    def to_xarray(self) -> Any:
+        """The solution as an ``xarray.Dataset`` (needs xarray)."""
+
+def solve(
+    case: Case,
+    progress: Optional[Callable[[Dict[str, Any]], object]] = None,
+    *,
+    stresses: bool = True,
+) -> Solution:
+    """Solves ``case`` without the GIL. ``progress`` gets dicts with ``event`` =
+    ``"window"`` (``window``, ``cells``, ``half_width``) or ``"iteration"``
+    (``window``, ``iteration``, ``residual``). Ctrl-C raises ``KeyboardInterrupt``.
+    With ``stresses``, the case's ``[stress]`` section is computed too."""
+
+def cite() -> str:
+    """The works the computations rely on, as BibTeX (``thirdbody cite``)."""
+
+class SweepPlan:
+    """The cases of a sweep (the product of ``thirdbody sweep``, with its ids and
+    labels) and the assembly of its ``results.csv``; used by ``thirdbody.sweep``."""
+
+    def __new__(cls, case: Case, vary: Dict[str, Any]) -> "SweepPlan":
+        """The product of ``vary`` (dotted key -> list of values, or a string in the
+        ``--vary`` syntax) over ``case``; every case is checked (``ValueError``)."""
+    def __len__(self) -> int: ...
+    @property
+    def axes(self) -> List[str]:
+        """The varied keys, in order."""
+    def job(self, index: int) -> Tuple[str, Path, str, int, List[str]]:
+        """The arguments of :func:`_solve_record` for case ``index``: case text,
+        height-map folder, id, index, labels."""
+    def results_csv(self, records: Sequence[str]) -> bytes:
+        """The bytes of ``results.csv`` from the JSON records of :func:`_solve_record`."""
+
+def _solve_record(text: str, base: _Path, id: str, index: int, labels: Sequence[str]) -> str:
+    """Solves one sweep case on one thread, as ``thirdbody sweep`` does; its record
+    as JSON (a failure is a ``failed`` record)."""
+
+def _command_line(args: Sequence[str]) -> int:
+    """Runs the ``thirdbody`` command line (program name first); its exit code."""
