@@ -118,6 +118,27 @@ def test_the_cli_bad_input_list_raises_the_cli_message(entry, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+def test_two_solves_in_threads_overlap_in_time():
+    # Each solve reports progress from its own thread while it runs; with the GIL
+    # held by a solve, the other could not start before it ended, and the two event
+    # streams would not interleave.
+    case = thirdbody.Case.from_file(ROOT / "examples" / "paper_fig3.toml").with_(
+        grid__cells=[256, 256])
+    log = []
+
+    def work(name):
+        thirdbody.solve(case, progress=lambda e: log.append(name))
+
+    threads = [threading.Thread(target=work, args=(n,)) for n in "ab"]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    first_b, last_a = log.index("b"), len(log) - 1 - log[::-1].index("a")
+    first_a, last_b = log.index("a"), len(log) - 1 - log[::-1].index("b")
+    assert first_b < last_a and first_a < last_b, "the solves ran one after the other"
+
+
 def test_fields_are_shared_read_only_arrays_and_stresses_can_wait():
     example = ROOT / "examples" / "paper_fig10a.toml"
     solution = thirdbody.solve(thirdbody.Case.from_file(example), stresses=False)
