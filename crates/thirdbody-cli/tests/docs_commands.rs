@@ -44,7 +44,12 @@ fn sh_commands(markdown: &str) -> Vec<String> {
 
 /// Commands run elsewhere: the test command itself, the package install (test.sh
 /// does it), benchmarks.
-const NOT_RUN_HERE: [&str; 4] = ["./test.sh", "pip install", "cargo bench", "--example scaling"];
+const NOT_RUN_HERE: [&str; 4] = [
+    "./test.sh",
+    "pip install",
+    "cargo bench",
+    "--example scaling",
+];
 
 #[test]
 fn every_sh_command_of_the_docs_runs_as_written() {
@@ -92,7 +97,10 @@ fn every_sh_command_of_the_docs_runs_as_written() {
             ran += 1;
         }
     }
-    assert!(ran >= 10, "only {ran} commands found: did the docs lose their examples?");
+    assert!(
+        ran >= 10,
+        "only {ran} commands found: did the docs lose their examples?"
+    );
 }
 
 #[test]

@@ -264,3 +264,49 @@ fn surface_normal_stress_is_minus_the_cell_pressure() {
         }
     }
 }
+
+/// The observed computation reports every depth plane it computes (what the CLI's
+/// stress progress bar counts) and gives exactly the unobserved results.
+#[test]
+fn observed_stresses_count_every_plane_and_equal_the_unobserved_ones() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::Mutex;
+    use thirdbody::stress::{SectionKind, StressProgress, StressRequest};
+
+    let grid = Grid::centred(24, 20, 0.1, [0.0, 0.0]).unwrap();
+    let p = patch(&grid);
+    let body = Body::Homogeneous(MAT);
+    let request = StressRequest {
+        sections: Some(vec![
+            SectionKind::Xz,
+            SectionKind::Surface,
+            SectionKind::Block,
+        ]),
+        max_depth: Some(0.5),
+        depth_points: 5,
+        planes: vec![0.2],
+        ..StressRequest::default()
+    };
+    let announced = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    let names = Mutex::new(Vec::new());
+    let observed = request
+        .compute_observed(&body, &grid, &p, &|e| match e {
+            StressProgress::Start { planes } => announced.store(planes, Ordering::SeqCst),
+            StressProgress::Section { name, planes } => {
+                names.lock().unwrap().push((name.to_string(), planes))
+            }
+            StressProgress::PlaneDone => {
+                done.fetch_add(1, Ordering::SeqCst);
+            }
+        })
+        .unwrap();
+    // XZ and block at 5 depths, the surface and the extra plane at one each.
+    assert_eq!(announced.into_inner(), 5 + 1 + 5 + 1);
+    assert_eq!(done.into_inner(), 12);
+    let names = names.into_inner().unwrap();
+    assert_eq!(names.len(), 4, "{names:?}");
+    assert_eq!(names.iter().map(|n| n.1).sum::<usize>(), 12);
+    let plain = request.compute(&body, &grid, &p).unwrap();
+    assert_eq!(observed.sections, plain.sections);
+}

@@ -247,7 +247,12 @@ fn solve(args: &SolveArgs) -> Result<()> {
     let solution = result?;
 
     let stress = stress
-        .map(|request| solution.stress_results(&request))
+        .map(|request| {
+            let bar = progress::StressBar::new(!args.quiet && std::io::stderr().is_terminal());
+            let results = solution.stress_results_observed(&request, &|e| bar.observe(e));
+            bar.finish();
+            results
+        })
         .transpose()?;
     let summary = crate::summary::summary_json(&case, &solution, solve_seconds, stress.as_ref())?;
     for warning in thirdbody::report::model_warnings(&case, &solution) {

@@ -8,6 +8,7 @@
 //! staged and renamed into DIR, and `summary.json` is replaced (atomically) by one
 //! with the new `stress` object.
 
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use crate::heightmap;
@@ -19,7 +20,7 @@ use thirdbody::case_file::parse_case_file;
 use thirdbody::{Grid, KernelCache};
 
 use crate::app::outputs::{self, Formats};
-use crate::app::{report, stress_outputs, BadInput};
+use crate::app::{progress, report, stress_outputs, BadInput};
 use crate::atomic::Staging;
 
 /// Arguments of `thirdbody stress`.
@@ -185,7 +186,10 @@ pub fn run(args: &StressArgs) -> Result<()> {
             worst / scale
         )));
     }
-    let results = solution.stress_results(&request)?;
+    let bar = progress::StressBar::new(!args.quiet && std::io::stderr().is_terminal());
+    let results = solution.stress_results_observed(&request, &|e| bar.observe(e));
+    bar.finish();
+    let results = results?;
 
     let mut out = Staging::new(dir)?;
     stress_outputs::write_stress(

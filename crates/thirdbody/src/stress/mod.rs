@@ -37,7 +37,8 @@ pub use kernels::{
     StressKernels, COMPONENTS,
 };
 pub use request::{
-    NamedSection, SectionId, SectionKind, StressRequest, StressResults, StressSummary,
+    NamedSection, SectionId, SectionKind, StressProgress, StressRequest, StressResults,
+    StressSummary,
 };
 
 pub use crate::body::coated_stress::Side;
@@ -74,6 +75,16 @@ pub enum Section {
         /// Which side of the interface.
         side: Side,
     },
+}
+
+impl Section {
+    /// The depth planes the section is computed on (one for a plane or interface).
+    pub fn depth_count(&self) -> usize {
+        match self {
+            Section::XzPlane { depths, .. } | Section::Block { depths } => depths.len(),
+            Section::Plane { .. } | Section::Interface { .. } => 1,
+        }
+    }
 }
 
 /// Stresses on a section: component `c` at `(xs[i], ys[j], zs[k])` is
@@ -181,6 +192,18 @@ pub fn stresses(
     body: &Body,
     section: &Section,
 ) -> Result<StressField> {
+    stresses_observed(grid, pressure, body, section, &|| {})
+}
+
+/// As [`stresses`], calling `depth_done` (from any thread) each time one depth of the
+/// section is computed: a front end's progress bar.
+pub fn stresses_observed(
+    grid: &Grid,
+    pressure: &[f64],
+    body: &Body,
+    section: &Section,
+    depth_done: &(dyn Fn() + Sync),
+) -> Result<StressField> {
     if pressure.len() != grid.len() {
         return Err(Error::invalid(
             "pressure",
@@ -231,19 +254,26 @@ pub fn stresses(
             xs,
             ys: vec![*y],
             zs: depths.clone(),
-            components: sections::xz_plane(grid, pressure, kernels.as_ref(), *y, depths),
+            components: sections::xz_plane(
+                grid,
+                pressure,
+                kernels.as_ref(),
+                *y,
+                depths,
+                depth_done,
+            ),
         },
         Section::Plane { z } => StressField {
             xs,
             ys: all_ys(),
             zs: vec![*z],
-            components: sections::planes(grid, pressure, kernels.as_ref(), &[*z]),
+            components: sections::planes(grid, pressure, kernels.as_ref(), &[*z], depth_done),
         },
         Section::Block { depths } => StressField {
             xs,
             ys: all_ys(),
             zs: depths.clone(),
-            components: sections::planes(grid, pressure, kernels.as_ref(), depths),
+            components: sections::planes(grid, pressure, kernels.as_ref(), depths, depth_done),
         },
         Section::Interface { .. } => {
             let thickness = body.model().interface_depths()[0];
@@ -251,7 +281,13 @@ pub fn stresses(
                 xs,
                 ys: all_ys(),
                 zs: vec![thickness],
-                components: sections::planes(grid, pressure, kernels.as_ref(), &[thickness]),
+                components: sections::planes(
+                    grid,
+                    pressure,
+                    kernels.as_ref(),
+                    &[thickness],
+                    depth_done,
+                ),
             }
         }
     };
@@ -268,5 +304,15 @@ impl Solution {
     /// solution was solved on.
     pub fn stress_results(&self, request: &StressRequest) -> Result<StressResults> {
         request.compute(&self.body, &self.grid, &self.pressure)
+    }
+
+    /// As [`Solution::stress_results`], reporting to `observer` (from any thread):
+    /// see [`StressProgress`].
+    pub fn stress_results_observed(
+        &self,
+        request: &StressRequest,
+        observer: &(dyn Fn(StressProgress<'_>) + Sync),
+    ) -> Result<StressResults> {
+        request.compute_observed(&self.body, &self.grid, &self.pressure, observer)
     }
 }

@@ -10,7 +10,7 @@
 //! coated body both sides of the interface. The contact half-length is the larger
 //! half-extent of the loaded cells along x and y.
 
-use super::{stresses, Section, Side, StressField};
+use super::{stresses_observed, Section, Side, StressField};
 use crate::case::Body;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
@@ -159,6 +159,26 @@ pub struct StressSummary {
 /// Deepest `stress.max_depth` allowed, in widths of the solved window: far deeper
 /// the stresses are zero to double precision and the depths could overflow.
 const MAX_DEPTH_IN_WINDOWS: f64 = 100.0;
+
+/// What a stress computation reports while it runs (a front end's progress bar).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StressProgress<'a> {
+    /// Before anything: the number of depth planes (one per depth of each section;
+    /// a surface or interface section is one) that will be computed.
+    Start {
+        /// Depth planes in all.
+        planes: usize,
+    },
+    /// A section starts.
+    Section {
+        /// Its name, as in the file names (`xz`, `interface_coating`, ...).
+        name: &'a str,
+        /// Its depth planes.
+        planes: usize,
+    },
+    /// One depth plane is done.
+    PlaneDone,
+}
 
 /// Computed sections and their summary.
 #[derive(Debug, Clone)]
@@ -363,10 +383,32 @@ impl StressRequest {
     /// `grid`, e.g. a [`crate::Solution`]'s) on `body` (the case's body), and the
     /// summary.
     pub fn compute(&self, body: &Body, grid: &Grid, pressure: &[f64]) -> Result<StressResults> {
+        self.compute_observed(body, grid, pressure, &|_| {})
+    }
+
+    /// As [`StressRequest::compute`], reporting to `observer` (from any thread): first
+    /// [`StressProgress::Start`] with the number of depth planes in all, then each
+    /// section as it starts and each depth plane as it is done.
+    pub fn compute_observed(
+        &self,
+        body: &Body,
+        grid: &Grid,
+        pressure: &[f64],
+        observer: &(dyn Fn(StressProgress<'_>) + Sync),
+    ) -> Result<StressResults> {
         let named = self.sections(body, grid, pressure)?;
+        observer(StressProgress::Start {
+            planes: named.iter().map(|n| n.section.depth_count()).sum(),
+        });
         let mut sections = Vec::with_capacity(named.len());
         for n in named {
-            let field = stresses(grid, pressure, body, &n.section)?;
+            let name = n.name();
+            observer(StressProgress::Section {
+                name: &name,
+                planes: n.section.depth_count(),
+            });
+            let depth_done = || observer(StressProgress::PlaneDone);
+            let field = stresses_observed(grid, pressure, body, &n.section, &depth_done)?;
             sections.push((n, field));
         }
         let summary = summarise(&sections);

@@ -33,6 +33,7 @@ pub(crate) fn planes(
     pressure: &[f64],
     kernels: &dyn StressKernels,
     depths: &[f64],
+    depth_done: &(dyn Fn() + Sync),
 ) -> Components {
     let (nx, ny) = (grid.nx, grid.ny);
     let n = nx * ny;
@@ -69,7 +70,11 @@ pub(crate) fn planes(
                     conv.transform_field(pressure);
                     (conv, InfluenceTable::default())
                 },
-                |(conv, table), &z| one_depth(&plan, conv, table, z),
+                |(conv, table), &z| {
+                    let out = one_depth(&plan, conv, table, z);
+                    depth_done();
+                    out
+                },
             )
             .collect()
     } else {
@@ -79,7 +84,11 @@ pub(crate) fn planes(
         let mut table = InfluenceTable::default();
         depths
             .iter()
-            .map(|&z| one_depth(&plan, &mut conv, &mut table, z))
+            .map(|&z| {
+                let out = one_depth(&plan, &mut conv, &mut table, z);
+                depth_done();
+                out
+            })
             .collect()
     };
     gather(per_depth, n)
@@ -93,12 +102,14 @@ pub(crate) fn xz_plane(
     kernels: &dyn StressKernels,
     y: f64,
     depths: &[f64],
+    depth_done: &(dyn Fn() + Sync),
 ) -> Components {
     let (nx, ny, h) = (grid.nx, grid.ny, grid.cell);
     let loaded: Vec<usize> = (0..ny)
         .filter(|&l| pressure[l * nx..(l + 1) * nx].iter().any(|&p| p != 0.0))
         .collect();
     let Some(&l_max) = loaded.last() else {
+        depths.iter().for_each(|_| depth_done());
         return std::array::from_fn(|_| vec![0.0; nx * depths.len()]);
     };
     // Lattice row m holds the offsets to source row l = l_max - m, in cells. A y
@@ -202,6 +213,7 @@ pub(crate) fn xz_plane(
                         .expect("FFT lengths are fixed by the plan");
                     o.extend(real[..nx].iter().map(|v| v * scale));
                 }
+                depth_done();
                 out
             },
         )

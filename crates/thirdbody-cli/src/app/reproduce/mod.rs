@@ -21,7 +21,7 @@ mod stress_figures;
 
 use std::fmt::Write as _;
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -186,7 +186,10 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
     let mut staging = Staging::new(&args.out)?;
     let mut solutions = Solutions::new(catalogue::every_case(resolution));
     let mut reports = Vec::new();
-    for figure in ALL {
+    let bar =
+        super::progress::FigureBar::new(!args.quiet && std::io::stderr().is_terminal(), ALL.len());
+    for (k, figure) in ALL.iter().enumerate() {
+        bar.start(&format!("figure {} of {}", k + 1, ALL.len()));
         let t = Instant::now();
         let mut files = FigureFiles {
             staging: &mut staging,
@@ -195,15 +198,16 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         let mut report = figure(&mut solutions, resolution, &mut files)?;
         report.files = files.names;
         if !args.quiet {
-            eprintln!(
+            bar.done(&format!(
                 "{}: {} ({:.1} s)",
                 report.id,
                 report.title,
                 t.elapsed().as_secs_f64()
-            );
+            ));
         }
         reports.push(report);
     }
+    bar.finish();
     let seconds = start.elapsed().as_secs_f64();
     let text = report_markdown(&reports, resolution, seconds);
     staging.write("report.md", |p| Ok(std::fs::write(p, &text)?))?;
