@@ -180,3 +180,53 @@ fn two_sweeps_started_together_on_one_folder_never_break_each_other() {
         assert!(out.join("results.csv").exists(), "trial {trial}");
     }
 }
+
+#[test]
+fn a_sweep_whose_workers_cannot_fit_together_is_refused_before_it_starts() {
+    // One 2048² Hertz solve needs about 1 GiB: two at once fit in this machine's
+    // memory, 64 at once do not. Refused at once, dry run included, exit 2.
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    let text = std::fs::read_to_string(examples().join("hertz.toml"))
+        .unwrap()
+        .replace("cells = [128, 128]", "cells = [2048, 2048]");
+    std::fs::write(&case, text).unwrap();
+    let loads: Vec<String> = (1..=64).map(|k| format!("{k}e-7")).collect();
+    let vary = format!("loading.normal_load={}", loads.join(","));
+    let sweep = |threads: &str| {
+        Command::new(env!("CARGO_BIN_EXE_thirdbody"))
+            .arg("sweep")
+            .arg(&case)
+            .args([
+                "--vary",
+                &vary,
+                "--dry-run",
+                "--quiet",
+                "--threads",
+                threads,
+            ])
+            .arg("--out")
+            .arg(dir.path().join("out"))
+            .output()
+            .unwrap()
+    };
+    let gib = (1u64 << 30) as f64;
+    if thirdbody_cli::memory::available_bytes().is_none_or(|b| b > 60.0 * gib || b < 3.0 * gib) {
+        return; // no /proc/meminfo, or a machine too large or too small to see the line
+    }
+    let run = sweep("64");
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("64 cases solved at once") && err.contains("GiB") && err.contains("--threads"),
+        "{err}"
+    );
+    let run = sweep("2");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(!dir.path().join("out").exists(), "a dry run writes nothing");
+}
