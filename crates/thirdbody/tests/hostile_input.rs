@@ -155,3 +155,49 @@ fn results_outside_the_model_carry_warnings() {
         thirdbody::report::model_warnings(&outside, &s)
     );
 }
+
+/// The fold diagnosis gives advice that fits the law (issue 14): a sigmoid law is
+/// told the largest delta that cannot fold, a table is not told of delta and p0, and
+/// neither is sent to refine the grid (the fold then moves to higher pressures).
+#[test]
+fn the_fold_diagnosis_fits_the_law() {
+    let fig3 = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/paper_fig3.toml"
+    ))
+    .unwrap();
+    let fold = |text: &str| {
+        let case = thirdbody::case_file::parse_case_file(text, &mut |_, _| unreachable!())
+            .unwrap()
+            .case;
+        let e = match solve(&case, &SolverParams::default()) {
+            Ok(s) => panic!("no fold: p_max = {}", s.summary().max_pressure),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains("row relation folds"), "{e}");
+        assert!(!e.contains("cells shorter"), "{e}");
+        e
+    };
+    // The known fold: delta = 1, p0' = 0.001, V' = 1e-4 (docs/architecture.md).
+    let sigmoid = fig3
+        .replace("delta = 0.5", "delta = 1.0")
+        .replace("velocity = 1e-3", "velocity = 1e-4")
+        .replace("cells = [128, 128]", "cells = [64, 64]");
+    let e = fold(&sigmoid);
+    assert!(
+        e.contains("delta <= 0.834") && e.contains("delta = 1"),
+        "{e}"
+    );
+    // A table that falls like 1/p^2 beyond 0.0002: C p falls there.
+    let table = sigmoid.replace("compliance = 0.02\n", "").replace(
+        "law = \"sigmoid\"\ndelta = 1.0\np0 = 0.001",
+        "law = \"table\"\npressures = [0.0, 0.0002, 0.0004, 0.0008, 0.0016]\n\
+             compliances = [0.02, 0.02, 0.005, 0.00125, 0.0003125]",
+    );
+    assert!(
+        table.contains("law = \"table\""),
+        "the example changed: {table}"
+    );
+    let e = fold(&table);
+    assert!(e.contains("table") && !e.contains("p0"), "{e}");
+}

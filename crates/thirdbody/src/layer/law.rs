@@ -7,6 +7,13 @@
 
 use crate::error::{Error, Result};
 
+/// Largest `delta` of the sigmoid law for which the creep rate `C[p] p` rises with p
+/// at every pressure. With `x = p / p0` and `s` the logistic function,
+/// `d(C p)/dp = C0 (1 + delta - 2 delta m(x))`, `m(x) = s(x) + x s(x) (1 - s(x))`,
+/// whose maximum is m* = 1.0998393201 at x = 2.3994 (found numerically, bounded
+/// Brent, to 1e-12); so the rate never falls iff `delta <= 1 / (2 m* - 1)`.
+pub(crate) const SIGMOID_MONOTONE_DELTA: f64 = 0.833_556_559_6;
+
 /// How the compliance depends on the local pressure.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ComplianceLaw {
@@ -249,6 +256,34 @@ impl ComplianceLaw {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod monotone_tests {
+    use super::*;
+
+    /// `d(C p)/dp` by central differences of eq. 11 written out here, on 0 < p < 30 p0.
+    fn lowest_creep_rate_slope(delta: f64) -> f64 {
+        let c = |p: f64| 1.0 + delta - 2.0 * delta / (1.0 + (-p).exp());
+        let e = 1e-6;
+        (1..30_000)
+            .map(|k| k as f64 * 1e-3)
+            .map(|p| ((p + e) * c(p + e) - (p - e) * c(p - e)) / (2.0 * e))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn the_sigmoid_creep_rate_rises_everywhere_exactly_up_to_the_stated_delta() {
+        assert!(lowest_creep_rate_slope(SIGMOID_MONOTONE_DELTA - 1e-4) > 0.0);
+        assert!(lowest_creep_rate_slope(SIGMOID_MONOTONE_DELTA + 1e-4) < 0.0);
+        // The law's own slope agrees: d(C p)/dp = C + p dC/dp at the worst point.
+        let law = ComplianceLaw::Sigmoid {
+            delta: SIGMOID_MONOTONE_DELTA,
+            p0: 1.0,
+        };
+        let v = law.at(1.0, 2.399_357);
+        assert!((v.compliance + 2.399_357 * v.slope).abs() < 1e-9);
     }
 }
 

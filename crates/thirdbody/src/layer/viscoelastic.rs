@@ -52,6 +52,7 @@
 
 use rayon::prelude::*;
 
+use super::law::SIGMOID_MONOTONE_DELTA;
 use super::rheology::{CreepForm, Flow};
 use super::{ComplianceLaw, Integration, Layer, LayerLinearisation, LayerResponse};
 
@@ -446,13 +447,25 @@ impl LayerResponse for ViscoelasticRows {
             .map(|k| p[k])
             .fold(f64::INFINITY, f64::min);
         worst.is_finite().then(|| {
+            let advice = match &self.layer.law {
+                ComplianceLaw::Sigmoid { delta, .. } => format!(
+                    "with the sigmoid law C[p] p falls with p somewhere once delta > \
+                     {SIGMOID_MONOTONE_DELTA:.3} (here delta = {delta}); use delta <= \
+                     {SIGMOID_MONOTONE_DELTA:.3} (C[p] p then rises at every pressure)"
+                ),
+                ComplianceLaw::Table(_) => "the table's compliance falls faster than 1/p \
+                     there, so C[p] p falls: make it fall more slowly (C[p] p rising \
+                     with p) above that pressure"
+                    .to_string(),
+                ComplianceLaw::Linear => "a linear layer should not fold: please report \
+                     this case"
+                    .to_string(),
+            };
             format!(
                 "the layer's row relation folds at pressures above about {worst:.3e} (its \
                  displacement falls as the pressure rises, so the discrete problem has no \
-                 unique solution); this happens when C[p] p decreases with p (delta near 1, \
-                 p >> p0) and the cells are long against the layer's creep length (h / (V T) \
-                 = {:.3e} here for the flow): use a smaller delta, a larger p0, or cells \
-                 shorter than V T",
+                 unique solution, h / (V T) = {:.3e} for the flow); {advice}. Finer cells \
+                 move the fold to higher pressures but do not remove it",
                 self.flow_per_cell
             )
         })
