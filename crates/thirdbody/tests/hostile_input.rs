@@ -201,3 +201,45 @@ fn the_fold_diagnosis_fits_the_law() {
     let e = fold(&table);
     assert!(e.contains("table") && !e.contains("p0"), "{e}");
 }
+
+/// A coating far thicker than the window is the coating's half-space (issue 14: at
+/// 1e15 the old expansion gave the uncoated answer): Fig. 7's case on a fixed 64²
+/// window with h1 = 1e15 and 1e100 equals the homogeneous E1 body to 1e-9.
+#[test]
+fn a_coating_far_thicker_than_the_window_is_the_coating_half_space() {
+    let fig7 = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/paper_fig7.toml"
+    ))
+    .unwrap()
+    .replace(
+        "cells = [128, 128]",
+        "cells = [64, 64]\nhalf_width = [0.06, 0.06]",
+    );
+    let summary = |text: &str| {
+        let case = thirdbody::case_file::parse_case_file(text, &mut |_, _| unreachable!())
+            .unwrap()
+            .case;
+        solve(&case, &SolverParams::default()).unwrap().summary()
+    };
+    let coating = "[coating]\nyoung = 3.0\npoisson = 0.3\nthickness = 0.02\n";
+    assert!(fig7.contains(coating), "the example changed");
+    let half_space = summary(
+        &fig7
+            .replace(coating, "")
+            .replace("young = 1.0", "young = 3.0"),
+    );
+    for thickness in ["1e15", "1e100"] {
+        let thick = summary(&fig7.replace("thickness = 0.02", &format!("thickness = {thickness}")));
+        for (a, b) in [
+            (thick.friction_coefficient, half_space.friction_coefficient),
+            (thick.max_pressure, half_space.max_pressure),
+            (thick.penetration, half_space.penetration),
+        ] {
+            assert!(
+                (a - b).abs() <= 1e-9 * b.abs(),
+                "h1 = {thickness}: {a} vs {b}"
+            );
+        }
+    }
+}
