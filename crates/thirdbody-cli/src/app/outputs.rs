@@ -208,13 +208,12 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
             y: p[j * g.nx..(j + 1) * g.nx].to_vec(),
             dashed: false,
         }];
-        plot::line_plot(
+        plot::profile_plot(
             path,
             &series,
             "Pressure along x through the centre",
             l.x,
             l.pressure,
-            false,
         )
     })?;
     if let Some(c) = &solution.compliance {

@@ -125,13 +125,12 @@ pub fn write_stress(
         .collect();
     if !series.is_empty() {
         out.write("stress_sigma_x.png", |p| {
-            plot::line_plot(
+            plot::profile_plot(
                 p,
                 &series,
                 &format!("sigma_x along x on the cell row y = {}", short(row_y)),
                 l.x,
                 &format!("sigma_x {}", l.stress_scale),
-                false,
             )
         })?;
     }

@@ -222,7 +222,8 @@ pub(crate) fn draw_colour_bar<DB: DrawingBackend>(
         )))
         .map_err(draw_err)?;
 
-    // The description, reading upwards, just right of the widest tick label.
+    // The description, reading upwards, a gap right of the widest tick label (plotters
+    // starts the labels LABEL_OFFSET right of the bar).
     let format = linear_ticks(scale.lo, scale.hi, BAR_TICKS);
     let widest = tick_values(scale.lo, scale.hi, BAR_TICKS)
         .iter()
@@ -235,7 +236,10 @@ pub(crate) fn draw_colour_bar<DB: DrawingBackend>(
         .unwrap_or(0);
     let (x_px, y_px) = chart.plotting_area().get_pixel_range();
     let (area_x, area_y) = (area.get_base_pixel().0, area.get_base_pixel().1);
-    let x = x_px.end - area_x + 12 + widest as i32 + LABEL_SIZE as i32 / 2 + 4;
+    let (_, label_height) = area
+        .estimate_text_size(label, &text(LABEL_SIZE))
+        .map_err(draw_err)?;
+    let x = x_px.end - area_x + LABEL_OFFSET + widest as i32 + 10 + label_height as i32 / 2;
     let y = (y_px.start + y_px.end) / 2 - area_y;
     let style = text(LABEL_SIZE)
         .transform(FontTransform::Rotate270)
@@ -243,6 +247,10 @@ pub(crate) fn draw_colour_bar<DB: DrawingBackend>(
     area.draw_text(label, &style, (x, y)).map_err(draw_err)?;
     Ok(())
 }
+
+/// Distance from the bar's right edge to the start of its tick labels (tick mark and
+/// plotters' gap), pixels.
+const LABEL_OFFSET: i32 = 12;
 
 /// Labelled ticks on the colour bar, at most.
 const BAR_TICKS: usize = 8;

@@ -1,17 +1,30 @@
 //! Line plots of several series (sweeps, profiles, convergence histories) with a legend
 //! and an optional logarithmic x axis.
+//!
+//! Layout rules shared by every line plot: tick labels that would run into each other
+//! are thinned (on a logarithmic axis decades are kept first, then 2 and 5 times a
+//! decade, then the rest, each only if it clears the labels already kept); the legend
+//! goes to the first place (corners first, then the middles of the edges) where it
+//! covers no drawn point of any series, and if there is none the y axis gets headroom
+//! above the data for it. Series are coloured by the "tab10" cycle, except that a dashed
+//! and a solid series whose labels differ only after their last ", " (e.g.
+//! "surface, linear" and "surface, nonlinear") share a colour. A profile along the
+//! sliding direction (x) notes it under the plot.
 
 use anyhow::Result;
-use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+use plotters::coord::ranged1d::{AsRangedCoord, Ranged, ValueFormatter};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::colour::{linear_ticks, log_tick, min_max};
-use super::output::{draw_err, text, Figure, LABEL_SIZE, TICK_SIZE, TITLE_SIZE};
+use super::colour::{linear_ticks, log_tick, min_max, tick_values};
+use super::output::{
+    draw_err, draw_sliding_note, draw_title, text, Figure, LABEL_SIZE, TICK_SIZE, TITLE_STRIP,
+};
 use super::Series;
 
 /// Distinct line colours (the "tab10" cycle of matplotlib / Tableau).
-const CYCLE: [RGBColor; 10] = [
+pub(crate) const CYCLE: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -31,12 +44,26 @@ const Y_TICKS: usize = 8;
 /// Series with at most this many points also get a marker at each point.
 const MARKED_POINTS: usize = 30;
 
+/// Legend geometry (plotters' series-label box): sample line area and inner margin.
+const LEGEND_SAMPLE: i32 = 30;
+const LEGEND_MARGIN: i32 = 10;
+/// Inset of plotters' legend positions from the plotting area's border, pixels.
+const LEGEND_INSET: i32 = 5;
+/// Clearance kept between the legend box and drawn data, pixels.
+const LEGEND_CLEARANCE: i32 = 5;
+/// Margin right of the plotting area: room for half the last x tick label.
+const RIGHT_MARGIN: u32 = 32;
+/// Smallest gap between neighbouring tick labels, pixels.
+const TICK_GAP: i32 = 8;
+
 pub(crate) struct LineFigure<'a> {
     pub series: &'a [Series],
     pub title: &'a str,
     pub x_label: &'a str,
     pub y_label: &'a str,
     pub log_x: bool,
+    /// Note the sliding direction (+x) under the plot: the x axis is the position x.
+    pub sliding_note: bool,
 }
 
 /// `[lo, hi]` padded by 5 % of the span, or by a unit-ish amount around a single value.
@@ -48,6 +75,102 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
         let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
         (lo - pad, hi + pad)
     }
+}
+
+/// Index into [`CYCLE`] of each series: a new colour per series, except that a series
+/// whose label equals a solid/dashed counterpart's up to the last ", " takes that
+/// counterpart's colour (one colour per curve, solid vs dashed per model).
+pub(crate) fn colour_indices(series: &[Series]) -> Vec<usize> {
+    let stem = |s: &Series| s.label.rsplit_once(", ").map(|(a, _)| a.to_string());
+    let mut out: Vec<usize> = Vec::with_capacity(series.len());
+    let mut next = 0;
+    for (k, s) in series.iter().enumerate() {
+        let partner = stem(s).and_then(|st| {
+            (0..k).find(|&m| {
+                series[m].dashed != s.dashed
+                    && stem(&series[m]).as_deref() == Some(st.as_str())
+                    // Each earlier series pairs with one later series at most.
+                    && !(m + 1..k).any(|q| out[q] == out[m])
+            })
+        });
+        match partner {
+            Some(m) => out.push(out[m]),
+            None => {
+                out.push(next);
+                next += 1;
+            }
+        }
+    }
+    out
+}
+
+/// Of tick labels at pixel positions `centres` (along the axis) with text extents
+/// `sizes` (along the axis) and priorities `rank` (0 first), which ones to keep so that
+/// no two kept ones come closer than [`TICK_GAP`]: higher priority first, then in order.
+pub(crate) fn thin_labels(centres: &[i32], sizes: &[i32], rank: &[u8]) -> Vec<bool> {
+    let mut keep = vec![false; centres.len()];
+    let mut order: Vec<usize> = (0..centres.len()).collect();
+    order.sort_by_key(|&k| rank[k]);
+    for k in order {
+        let (a0, a1) = (centres[k] - sizes[k] / 2, centres[k] + sizes[k] / 2);
+        let clear = (0..centres.len()).filter(|&m| keep[m]).all(|m| {
+            let (b0, b1) = (centres[m] - sizes[m] / 2, centres[m] + sizes[m] / 2);
+            a1 + TICK_GAP <= b0 || b1 + TICK_GAP <= a0
+        });
+        keep[k] = clear;
+    }
+    keep
+}
+
+/// Priority of a tick on a logarithmic axis: 0 for a decade, 1 for 2 or 5 times one,
+/// 2 otherwise.
+fn log_rank(v: f64) -> u8 {
+    let mantissa = v / 10f64.powf(v.log10().floor());
+    let near = |m: f64| (mantissa - m).abs() < 1e-6 * m || (mantissa - 10.0 * m).abs() < 1e-5;
+    if near(1.0) {
+        0
+    } else if near(2.0) || near(5.0) {
+        1
+    } else {
+        2
+    }
+}
+
+/// A rectangle in pixels, `[x0, y0, x1, y1]`.
+type PixelBox = [i32; 4];
+
+/// The candidate legend positions, in order of preference.
+const LEGEND_PLACES: [SeriesLabelPosition; 8] = [
+    SeriesLabelPosition::UpperRight,
+    SeriesLabelPosition::UpperLeft,
+    SeriesLabelPosition::LowerRight,
+    SeriesLabelPosition::LowerLeft,
+    SeriesLabelPosition::UpperMiddle,
+    SeriesLabelPosition::LowerMiddle,
+    SeriesLabelPosition::MiddleRight,
+    SeriesLabelPosition::MiddleLeft,
+];
+
+/// The legend box at `place` in an area of `area` pixels (plotters' layout rule).
+fn legend_box(place: &SeriesLabelPosition, (w, h): (i32, i32), area: (i32, i32)) -> PixelBox {
+    use SeriesLabelPosition::*;
+    let x = match place {
+        UpperLeft | MiddleLeft | LowerLeft => LEGEND_INSET,
+        UpperMiddle | MiddleMiddle | LowerMiddle => (area.0 - w) / 2,
+        _ => area.0 - w - LEGEND_INSET,
+    };
+    let y = match place {
+        UpperLeft | UpperMiddle | UpperRight => LEGEND_INSET,
+        MiddleLeft | MiddleMiddle | MiddleRight => (area.1 - h) / 2,
+        _ => area.1 - h - LEGEND_INSET,
+    };
+    [x, y, x + w, y + h]
+}
+
+/// Whether the pixel `p` lies in `b` grown by [`LEGEND_CLEARANCE`].
+fn near_box(b: &PixelBox, p: (i32, i32)) -> bool {
+    let c = LEGEND_CLEARANCE;
+    p.0 >= b[0] - c && p.0 <= b[2] + c && p.1 >= b[1] - c && p.1 <= b[3] + c
 }
 
 impl LineFigure<'_> {
@@ -80,32 +203,129 @@ impl LineFigure<'_> {
         (x_range, padded(y_lo, y_hi))
     }
 
+    fn labelled(&self) -> impl Iterator<Item = &Series> {
+        self.series.iter().filter(|s| !s.label.is_empty())
+    }
+
     fn draw_on<DB, X>(
         &self,
         area: &DrawingArea<DB, Shift>,
-        x_axis: X,
+        x_axis: impl Fn() -> X,
+        x_keys: &[f64],
+        x_rank: &dyn Fn(f64) -> u8,
         x_format: &dyn Fn(&f64) -> String,
-        y_range: (f64, f64),
+        mut y_range: (f64, f64),
     ) -> Result<()>
     where
         DB: DrawingBackend,
         X: AsRangedCoord<Value = f64>,
         X::CoordDescType: ValueFormatter<f64>,
     {
-        let mut chart = ChartBuilder::on(area)
-            .caption(self.title, text(TITLE_SIZE))
-            .margin(16)
-            .x_label_area_size(62)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x_axis, y_range.0..y_range.1)
-            .map_err(draw_err)?;
+        let (title_area, body) = area.split_vertically(TITLE_STRIP);
+        draw_title(&title_area, self.title)?;
+        // The y label area fits the widest tick label, a gap and the rotated description.
+        let y_area = |y: (f64, f64)| -> Result<u32> {
+            let format = linear_ticks(y.0, y.1, Y_TICKS);
+            let mut widest = 0;
+            for v in tick_values(y.0, y.1, Y_TICKS) {
+                let (w, _) = area
+                    .estimate_text_size(&format(&v), &text(TICK_SIZE))
+                    .map_err(draw_err)?;
+                widest = widest.max(w);
+            }
+            Ok((widest + 22 + LABEL_SIZE as u32 + 8).max(80))
+        };
+        let build = |y: (f64, f64)| -> Result<_> {
+            ChartBuilder::on(&body)
+                .margin(16)
+                .margin_top(4)
+                .margin_right(RIGHT_MARGIN)
+                .x_label_area_size(62)
+                .y_label_area_size(y_area(y)?)
+                .build_cartesian_2d(x_axis(), y.0..y.1)
+                .map_err(draw_err)
+        };
+
+        // Legend size (plotters' series-label layout), then its place: the first that
+        // covers no data; if none, headroom above the data, and try again.
+        let mut legend_text = MultiLineText::<_, &str>::new((0, 0), text(TICK_SIZE));
+        for s in self.labelled() {
+            legend_text.push_line(s.label.as_str());
+        }
+        let any_label = self.labelled().next().is_some();
+        let legend_dim = legend_text
+            .estimate_dimension()
+            .map(|(w, h)| (w + LEGEND_SAMPLE + 2 * LEGEND_MARGIN, h + 2 * LEGEND_MARGIN))
+            .map_err(|e| anyhow::anyhow!("measuring the legend: {e:?}"))?;
+        let mut legend_place = SeriesLabelPosition::UpperRight;
+        let mut chart = build(y_range)?;
+        for attempt in 0..4 {
+            if !any_label {
+                break;
+            }
+            let (px, py) = chart.plotting_area().get_pixel_range();
+            let dim = (px.end - px.start, py.end - py.start);
+            let samples = self.pixel_samples(|p| {
+                let (x, y) = chart.backend_coord(&p);
+                (x - px.start, y - py.start)
+            });
+            let free = LEGEND_PLACES.iter().find(|place| {
+                let b = legend_box(place, legend_dim, dim);
+                !samples.iter().any(|&p| near_box(&b, p))
+            });
+            if let Some(place) = free {
+                legend_place = place.clone();
+                break;
+            }
+            if attempt == 3 {
+                break;
+            }
+            // Reserve the legend's height (and clearance) at the top.
+            let r = ((legend_dim.1 + 2 * LEGEND_INSET + 2 * LEGEND_CLEARANCE) as f64
+                / dim.1.max(1) as f64)
+                .min(0.6);
+            y_range.1 += (y_range.1 - y_range.0) * r / (1.0 - r);
+            chart = build(y_range)?;
+        }
+
+        // Tick labels of x that clear each other.
+        let mut centres = Vec::new();
+        let mut widths = Vec::new();
+        let mut ranks = Vec::new();
+        for &v in x_keys {
+            let (w, _) = area
+                .estimate_text_size(&x_format(&v), &text(TICK_SIZE))
+                .map_err(draw_err)?;
+            centres.push(chart.backend_coord(&(v, y_range.0)).0);
+            widths.push(w as i32);
+            ranks.push(x_rank(v));
+        }
+        let keep = thin_labels(&centres, &widths, &ranks);
+        let kept: Vec<f64> = x_keys
+            .iter()
+            .zip(&keep)
+            .filter(|(_, &k)| k)
+            .map(|(&v, _)| v)
+            .collect();
+        // plotters asks for the labels of the same key points (compared exactly), and
+        // may list one twice (log axes at a decade): label each value once.
+        let labelled = std::cell::RefCell::new(Vec::<f64>::new());
+        let x_labels = |v: &f64| {
+            if kept.contains(v) && !labelled.borrow().contains(v) {
+                labelled.borrow_mut().push(*v);
+                x_format(v)
+            } else {
+                String::new()
+            }
+        };
+
         chart
             .configure_mesh()
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(205, 205, 205))
             .x_labels(X_TICKS)
             .y_labels(Y_TICKS)
-            .x_label_formatter(x_format)
+            .x_label_formatter(&x_labels)
             .y_label_formatter(&linear_ticks(y_range.0, y_range.1, Y_TICKS))
             .x_desc(self.x_label)
             .y_desc(self.y_label)
@@ -114,9 +334,9 @@ impl LineFigure<'_> {
             .draw()
             .map_err(draw_err)?;
 
-        let mut any_label = false;
-        for (k, s) in self.series.iter().enumerate() {
-            let colour = CYCLE[k % CYCLE.len()];
+        let colours = colour_indices(self.series);
+        for (s, &c) in self.series.iter().zip(&colours) {
+            let colour = CYCLE[c % CYCLE.len()];
             let style = colour.stroke_width(2);
             let points = s.x.iter().copied().zip(s.y.iter().copied());
             let annotation = if s.dashed {
@@ -129,7 +349,6 @@ impl LineFigure<'_> {
                     .map_err(draw_err)?
             };
             if !s.label.is_empty() {
-                any_label = true;
                 // A dashed legend line shows a gap; a solid one is two touching pieces.
                 let gap = if s.dashed { 6 } else { 0 };
                 annotation.label(s.label.as_str()).legend(move |(x, y)| {
@@ -147,14 +366,39 @@ impl LineFigure<'_> {
         if any_label {
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
+                .position(legend_place)
+                .margin(LEGEND_MARGIN)
+                .legend_area_size(LEGEND_SAMPLE)
                 .background_style(WHITE.mix(0.85))
                 .border_style(RGBColor(160, 160, 160))
                 .label_font(text(TICK_SIZE))
                 .draw()
                 .map_err(draw_err)?;
         }
+        if self.sliding_note {
+            // Under the plotting area, right-aligned, level with the x description.
+            let (px, py) = chart.plotting_area().get_pixel_range();
+            draw_sliding_note(area, px, py.end, 44, self.x_label)?;
+        }
         Ok(())
+    }
+
+    /// Pixels (plotting-area coordinates, via `to_px`) along every series' polyline,
+    /// about every 2 pixels, and its points.
+    fn pixel_samples(&self, to_px: impl Fn((f64, f64)) -> (i32, i32)) -> Vec<(i32, i32)> {
+        let mut out = Vec::new();
+        for s in self.series {
+            let pts: Vec<(i32, i32)> = s.x.iter().zip(&s.y).map(|(&x, &y)| to_px((x, y))).collect();
+            out.extend_from_slice(&pts);
+            for w in pts.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) / 2).max(1);
+                for t in 1..n {
+                    out.push((a.0 + (b.0 - a.0) * t / n, a.1 + (b.1 - a.1) * t / n));
+                }
+            }
+        }
+        out
     }
 }
 
@@ -166,9 +410,27 @@ impl Figure for LineFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let ((x0, x1), y_range) = self.ranges();
         if self.log_x {
-            self.draw_on(root, (x0..x1).log_scale(), &log_tick, y_range)
+            let coord: LogCoord<f64> = (x0..x1).log_scale().into();
+            let keys = coord.key_points(X_TICKS);
+            self.draw_on(
+                root,
+                || (x0..x1).log_scale(),
+                &keys,
+                &log_rank,
+                &log_tick,
+                y_range,
+            )
         } else {
-            self.draw_on(root, x0..x1, &linear_ticks(x0, x1, X_TICKS), y_range)
+            let coord: RangedCoordf64 = (x0..x1).into();
+            let keys = coord.key_points(X_TICKS);
+            self.draw_on(
+                root,
+                || x0..x1,
+                &keys,
+                &|_| 0,
+                &linear_ticks(x0, x1, X_TICKS),
+                y_range,
+            )
         }
     }
 }

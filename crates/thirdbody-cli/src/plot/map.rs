@@ -1,6 +1,7 @@
 //! Colour maps of fields on rectilinear cells (a surface grid or a vertical section):
 //! the raster of cell colours at the plot's pixel resolution, optional contour lines,
-//! an outline, a marked extreme, and the colour bar.
+//! an outline, a marked extreme, the note of the sliding direction under the map, and the
+//! colour bar.
 
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -8,10 +9,10 @@ use plotters::prelude::*;
 
 use super::colour::{draw_colour_bar, linear_ticks, ColourScale, BAR_STRIP};
 use super::contours::Axis;
-use super::output::{draw_err, draw_title, text, Figure, LABEL_SIZE, TICK_SIZE};
+use super::output::{
+    draw_err, draw_sliding_note, draw_title, text, Figure, LABEL_SIZE, TICK_SIZE, TITLE_STRIP,
+};
 
-/// Height of the title strip, pixels.
-const TITLE_STRIP: u32 = 44;
 /// Margin around the map, pixels.
 const MARGIN: u32 = 14;
 /// Height of the x tick labels and description below the map.
@@ -20,7 +21,8 @@ const BOTTOM_AREA: u32 = 62;
 const LEFT_AREA: u32 = 90;
 /// Longer side of the map's plotting area, pixels.
 const LONG_SIDE: f64 = 640.0;
-/// Shortest side allowed (a very elongated window is padded to keep equal aspect).
+/// Shortest side allowed (a very elongated window is padded to keep equal aspect; a
+/// section only below, so that its surface stays at the top edge).
 const SHORT_SIDE_MIN: f64 = 220.0;
 
 /// A line through points in plot coordinates.
@@ -123,7 +125,13 @@ impl MapFigure<'_> {
                 (mid - half, mid + half)
             };
             x_range = widen(x_range, plot_px.0);
-            y_range = widen(y_range, plot_px.1);
+            y_range = if self.y_negated {
+                // A section keeps its surface (the top) at the top edge: pad below.
+                let extra = per_px * plot_px.1 as f64 - ry;
+                (y0 - extra, y1)
+            } else {
+                widen(y_range, plot_px.1)
+            };
         }
         Layout {
             plot_px,
@@ -306,6 +314,10 @@ impl Figure for MapFigure<'_> {
                 .draw_series(std::iter::once(label))
                 .map_err(draw_err)?;
         }
+
+        // Under the map, right-aligned, level with the x description.
+        let (px, py) = chart.plotting_area().get_pixel_range();
+        draw_sliding_note(&main, px, py.end, 44, self.x_label)?;
 
         draw_colour_bar(
             &bar,

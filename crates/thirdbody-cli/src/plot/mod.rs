@@ -12,6 +12,13 @@
 //! `field[j * nx + i]` at `x = x0 + (i + 1/2) h`, `y = y0 + (j + 1/2) h`; sections are
 //! row-major with rows along depth z, drawn increasing downward (z points into the body).
 //!
+//! Texts are drawn with the paper's symbols: the ASCII spellings `mu`, `delta`, `tau1`,
+//! `sigma_x`, `E2`, ... in titles, labels and legends become μ, δ, τ₁, σₓ, E₂
+//! (`output::pretty`; CSV columns keep the ASCII names). Maps and profiles along x
+//! note the sliding direction ("slider moves +x →"). Sections show depths down to where
+//! the field has faded (see [`section_map`]); the layout rules of line plots (legend
+//! clear of the data, thinned tick labels, one colour per curve) are in `line`.
+//!
 //! Input with NaN or infinite values, empty series or mismatched lengths is refused with
 //! an error naming the offending argument, and no file is left behind.
 
@@ -30,6 +37,7 @@ use anyhow::{bail, Result};
 use colour::{min_max, ColourScale};
 use contours::{contour_lines, Axis};
 use map::{Corner, MapFigure, Marker};
+use output::pretty;
 
 /// One curve of a line plot.
 #[derive(Debug, Clone, PartialEq)]
@@ -137,11 +145,17 @@ pub fn field_map(
         }
         None => None,
     };
+    let (title, x_label, y_label, colour_label) = (
+        pretty(title),
+        pretty(x_label),
+        pretty(y_label),
+        pretty(colour_label),
+    );
     let figure = MapFigure {
-        title,
-        x_label,
-        y_label,
-        colour_label,
+        title: &title,
+        x_label: &x_label,
+        y_label: &y_label,
+        colour_label: &colour_label,
         scale: ColourScale::for_values(field),
         cols,
         rows,
@@ -167,6 +181,30 @@ pub fn line_plot(
     y_label: &str,
     log_x: bool,
 ) -> Result<()> {
+    line_figure(path, series, title, x_label, y_label, log_x, false)
+}
+
+/// [`line_plot`] of profiles along the sliding direction x (linear x axis), with the note
+/// "slider moves +x →" under the plot.
+pub fn profile_plot(
+    path: &Path,
+    series: &[Series],
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+) -> Result<()> {
+    line_figure(path, series, title, x_label, y_label, false, true)
+}
+
+fn line_figure(
+    path: &Path,
+    series: &[Series],
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    log_x: bool,
+    sliding_note: bool,
+) -> Result<()> {
     if series.is_empty() {
         bail!("line plot '{title}': no series to draw");
     }
@@ -184,12 +222,20 @@ pub fn line_plot(
             }
         }
     }
+    let series: Vec<Series> = series
+        .iter()
+        .map(|s| Series {
+            label: pretty(&s.label),
+            ..s.clone()
+        })
+        .collect();
     let figure = line::LineFigure {
-        series,
-        title,
-        x_label,
-        y_label,
+        series: &series,
+        title: &pretty(title),
+        x_label: &pretty(x_label),
+        y_label: &pretty(y_label),
         log_x,
+        sliding_note,
     };
     output::write_figure(path, &figure)
 }
@@ -202,6 +248,11 @@ pub fn line_plot(
 /// labelled with its value and position. Diverging colour map when the field changes
 /// sign, sequential otherwise. Equal scales on x and z unless one extent is more than five
 /// times the other.
+///
+/// Depths shown: from the first row down to the deepest row where the field's magnitude
+/// still reaches [`FADED`] of its largest, plus a margin of a quarter of that depth
+/// range (at least two rows); deeper rows, where the field has faded, are left out
+/// (the caller's data files keep them). A field that does not fade keeps every row.
 #[allow(clippy::too_many_arguments)]
 pub fn section_map(
     path: &Path,
@@ -219,6 +270,14 @@ pub fn section_map(
     let (nx, nz) = (xs.len(), zs.len());
     check_len("section field", field.len(), nx * nz, "xs.len() * zs.len()")?;
     check_finite("section field", field)?;
+    let nz = shown_depths(zs, nx, field);
+    let (zs, field) = (&zs[..nz], &field[..nz * nx]);
+    let (title, x_label, z_label, colour_label) = (
+        pretty(title),
+        pretty(x_label),
+        pretty(z_label),
+        pretty(colour_label),
+    );
 
     // Plot y = -z, rows upward: row r holds depth index k = nz - 1 - r.
     let cols = Axis::from_centres(xs);
@@ -252,10 +311,10 @@ pub fn section_map(
 
     let ratio = (rows.last_edge - rows.first_edge) / (cols.last_edge - cols.first_edge);
     let figure = MapFigure {
-        title,
-        x_label,
-        y_label: z_label,
-        colour_label,
+        title: &title,
+        x_label: &x_label,
+        y_label: &z_label,
+        colour_label: &colour_label,
         scale: ColourScale::for_values(field),
         cols,
         rows,
@@ -268,6 +327,33 @@ pub fn section_map(
         marker,
     };
     output::write_figure(path, &figure)
+}
+
+/// Fraction of a section's largest magnitude below which a depth counts as faded.
+pub const FADED: f64 = 0.05;
+
+/// How many of the first depth rows of a section (`zs.len()` rows of `nx` values) to
+/// show: down to the deepest row whose largest magnitude reaches [`FADED`] of the
+/// field's, plus a margin of a quarter of the depth range down to there, at least two
+/// rows more, and never fewer than two rows in all.
+fn shown_depths(zs: &[f64], nx: usize, field: &[f64]) -> usize {
+    let nz = zs.len();
+    let row_max = |k: usize| {
+        field[k * nx..(k + 1) * nx]
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+    };
+    let largest = (0..nz).map(row_max).fold(0.0f64, f64::max);
+    if largest == 0.0 {
+        return nz;
+    }
+    let deepest = (0..nz)
+        .rev()
+        .find(|&k| row_max(k) >= FADED * largest)
+        .unwrap_or(nz - 1);
+    let z_end = zs[deepest] + 0.25 * (zs[deepest] - zs[0]);
+    let by_margin = zs.iter().take_while(|&&z| z <= z_end).count();
+    by_margin.max(deepest + 3).max(2).min(nz)
 }
 
 /// A number with 3 significant digits for annotations.

@@ -127,6 +127,101 @@ pub(crate) fn draw_title<DB: DrawingBackend>(
         .map_err(draw_err)
 }
 
+/// Height of the title strip at the top of every figure, pixels.
+pub(crate) const TITLE_STRIP: u32 = 44;
+
+/// The note of the sliding direction on maps and profiles along x (docs/architecture.md:
+/// the frame is fixed to the slider, which moves in +x), longest form first.
+const SLIDING_NOTES: [&str; 3] = [
+    "slider moves +x \u{2192}",
+    "slider +x \u{2192}",
+    "+x \u{2192}",
+];
+
+/// Draws the sliding-direction note under a plotting area spanning the pixels `px`
+/// (horizontally, absolute) whose bottom is at `bottom` (absolute): right-aligned with
+/// the area, centred `below` pixels under it, in the longest form that keeps clear of a
+/// centred x description `desc` (the same text as plotters draws there).
+pub(crate) fn draw_sliding_note<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    px: std::ops::Range<i32>,
+    bottom: i32,
+    below: i32,
+    desc: &str,
+) -> Result<()> {
+    let (desc_w, _) = area
+        .estimate_text_size(desc, &text(LABEL_SIZE))
+        .map_err(draw_err)?;
+    let room = (px.end - px.start - desc_w as i32) / 2 - 12;
+    let mut note = SLIDING_NOTES[SLIDING_NOTES.len() - 1];
+    for n in SLIDING_NOTES {
+        let (w, _) = area
+            .estimate_text_size(n, &text(TICK_SIZE))
+            .map_err(draw_err)?;
+        if w as i32 <= room {
+            note = n;
+            break;
+        }
+    }
+    let base = area.get_base_pixel();
+    let style = text(TICK_SIZE).pos(plotters::style::text_anchor::Pos::new(
+        plotters::style::text_anchor::HPos::Right,
+        plotters::style::text_anchor::VPos::Center,
+    ));
+    area.draw_text(note, &style, (px.end - base.0, bottom - base.1 + below))
+        .map_err(draw_err)
+}
+
+/// `text` with the ASCII spellings of the paper's symbols written as the symbols the
+/// embedded font draws: whole words `mu`, `delta`, `tau1`, `sigma_x`, ... become μ, δ,
+/// τ₁, σₓ (subscripts where Unicode has the glyph, else plain: `sigma_y` is σy), and
+/// `E2`, `h1`, `p0`, `C0` take subscript digits; an apostrophe right after a word (the
+/// dimensionless mark, `x'`) becomes the prime ′. Other text is unchanged.
+pub(crate) fn pretty(text: &str) -> String {
+    fn symbol(word: &str) -> Option<&'static str> {
+        Some(match word {
+            "mu" => "\u{3bc}",
+            "delta" => "\u{3b4}",
+            "tau1" => "\u{3c4}\u{2081}",
+            "tau2" => "\u{3c4}\u{2082}",
+            "tau3" => "\u{3c4}\u{2083}",
+            "sigma_x" => "\u{3c3}\u{2093}",
+            "sigma_y" => "\u{3c3}y",
+            "sigma_z" => "\u{3c3}z",
+            "tau_xy" => "\u{3c4}xy",
+            "tau_xz" => "\u{3c4}xz",
+            "tau_yz" => "\u{3c4}yz",
+            "E1" => "E\u{2081}",
+            "E2" => "E\u{2082}",
+            "h1" => "h\u{2081}",
+            "p0" => "p\u{2080}",
+            "C0" => "C\u{2080}",
+            _ => return None,
+        })
+    }
+    let mut out = String::with_capacity(text.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        out.push_str(symbol(word).unwrap_or(word));
+        word.clear();
+    };
+    for c in text.chars() {
+        if c.is_alphanumeric() || c == '_' {
+            word.push(c);
+        } else if c == '\'' && !word.is_empty() {
+            // The dimensionless mark after a symbol (x', C'): the prime, which stays
+            // visible also in rotated text, where an apostrophe is a speck.
+            flush(&mut word, &mut out);
+            out.push('\u{2032}');
+        } else {
+            flush(&mut word, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
+}
+
 /// Pixel sizes of the texts.
 pub(crate) const TITLE_SIZE: f64 = 24.0;
 /// Tick labels.

@@ -50,7 +50,8 @@ pub fn max_pressure(s: &Solution) -> f64 {
     s.summary().max_pressure
 }
 
-/// Stages a line plot (PNG + SVG) and its CSV.
+/// Stages a line plot (PNG + SVG) and its CSV; a plot along x (linear) is a profile
+/// that notes the sliding direction.
 pub fn line_figure(
     files: &mut FigureFiles,
     stem: &str,
@@ -61,7 +62,12 @@ pub fn line_figure(
 ) -> Result<()> {
     files.series_csv(&format!("{stem}.csv"), ["series", x_label, y_label], series)?;
     files.plot(stem, |p| {
-        plot::line_plot(p, series, title, x_label, y_label, log_x)
+        if x_label == L.x && !log_x {
+            // A profile along the sliding direction.
+            plot::profile_plot(p, series, title, x_label, y_label)
+        } else {
+            plot::line_plot(p, series, title, x_label, y_label, log_x)
+        }
     })
 }
 

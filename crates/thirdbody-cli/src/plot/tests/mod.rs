@@ -9,6 +9,7 @@ use thirdbody::Grid;
 use super::{field_map, Series};
 
 mod inputs;
+mod layout;
 mod lines;
 mod maps;
 
