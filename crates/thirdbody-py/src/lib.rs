@@ -17,7 +17,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyBytes, PyDict, PyInt};
 use thirdbody::case_file::{parse_case_file, CaseFile};
-use thirdbody::stress::{Section, Side};
+use thirdbody::stress::{Section, Side, STORED_FIELD_NAMES};
 use thirdbody::Progress;
 use thirdbody_cli::heightmap;
 use thirdbody_cli::sweep::folder::{Record, SweepFile};
@@ -277,21 +277,6 @@ const DATASET_FIELDS: [(&str, &str, &str); 5] = [
     ("compliance", "m/Pa", "third-body layer's compliance C[p]"),
 ];
 
-/// The stress fields of a section, in the CLI's order and names.
-const STRESS_FIELDS: [&str; 11] = [
-    "sigma_x",
-    "sigma_y",
-    "sigma_z",
-    "tau_xy",
-    "tau_xz",
-    "tau_yz",
-    "s1",
-    "s2",
-    "s3",
-    "tau1",
-    "von_mises",
-];
-
 /// A section's coordinates and fields as a dict (see `Solution.stresses`).
 fn section_dict<'py>(
     py: Python<'py>,
@@ -302,11 +287,7 @@ fn section_dict<'py>(
     out.set_item("y", PyArray1::from_slice(py, &field.ys))?;
     out.set_item("z", PyArray1::from_slice(py, &field.zs))?;
     let shape = [field.zs.len(), field.ys.len(), field.xs.len()];
-    let mut fields: Vec<Vec<f64>> = field.components.to_vec();
-    fields.extend(field.principal());
-    fields.push(field.tau1());
-    fields.push(field.von_mises());
-    for (name, values) in STRESS_FIELDS.iter().zip(fields) {
+    for (name, values) in STORED_FIELD_NAMES.iter().zip(field.stored_fields()) {
         let array = PyArray1::from_vec(py, values)
             .reshape(shape)
             .expect("a section's field has one value per point");

@@ -25,28 +25,12 @@ use crate::app::outputs::Formats;
 use crate::app::section::{self, SectionId, SectionLabels};
 use crate::atomic::Staging;
 
-/// Names of the eleven stored fields, in storage order.
-pub const FIELD_NAMES: [&str; 11] = [
-    "sigma_x",
-    "sigma_y",
-    "sigma_z",
-    "tau_xy",
-    "tau_xz",
-    "tau_yz",
-    "s1",
-    "s2",
-    "s3",
-    "tau1",
-    "von_mises",
-];
+/// Names of the eleven stored fields, in storage order (the library's).
+pub use thirdbody::stress::STORED_FIELD_NAMES as FIELD_NAMES;
 
 /// The eleven fields of a section, in [`FIELD_NAMES`] order.
 fn all_fields(f: &StressField) -> Vec<Vec<f64>> {
-    let mut out: Vec<Vec<f64>> = f.components.to_vec();
-    out.extend(f.principal());
-    out.push(f.tau1());
-    out.push(f.von_mises());
-    out
+    f.stored_fields()
 }
 
 /// The `stress` object of `summary.json`.

@@ -77,6 +77,34 @@ pub enum Section {
     },
 }
 
+/// The eleven fields a front end stores for a section, in this order: the six
+/// components, the principal stresses s1 >= s2 >= s3, tau1 and von Mises
+/// ([`StressField::stored_fields`]).
+pub const STORED_FIELD_NAMES: [&str; 11] = [
+    "sigma_x",
+    "sigma_y",
+    "sigma_z",
+    "tau_xy",
+    "tau_xz",
+    "tau_yz",
+    "s1",
+    "s2",
+    "s3",
+    "tau1",
+    "von_mises",
+];
+
+impl StressField {
+    /// The fields of [`STORED_FIELD_NAMES`], each with one value per point.
+    pub fn stored_fields(&self) -> Vec<Vec<f64>> {
+        let mut out: Vec<Vec<f64>> = self.components.to_vec();
+        out.extend(self.principal());
+        out.push(self.tau1());
+        out.push(self.von_mises());
+        out
+    }
+}
+
 impl Section {
     /// The depth planes the section is computed on (one for a plane or interface).
     pub fn depth_count(&self) -> usize {
