@@ -323,6 +323,12 @@ fn check_usable(dir: &Path, spec: &SweepFile) -> Result<()> {
         return Ok(());
     }
     if !only_leftovers(dir) {
+        // A run that started in this folder may have written its sweep.json and
+        // first records since the look above (two sweeps started together): look
+        // again at the one file that decides.
+        if dir.join(SPEC_FILE).exists() {
+            return check_usable(dir, spec);
+        }
         return Err(SweepError::Folder(format!(
             "{} exists, is not empty and is not a sweep folder (no {SPEC_FILE}); choose \
              another --out folder",
