@@ -20,6 +20,15 @@ fn gib(bytes: f64) -> String {
     format!("{:.1} GiB", bytes / (1u64 << 30) as f64)
 }
 
+/// Peak bytes of one solve of `case` with the stresses `stress` asks for.
+pub fn estimated_bytes(case: &Case, stress: Option<&StressRequest>) -> f64 {
+    case.estimated_solve_bytes() + stress_bytes(case, stress)
+}
+
+fn stress_bytes(case: &Case, stress: Option<&StressRequest>) -> f64 {
+    stress.map_or(0.0, |r| r.estimated_bytes(&case.body, case.grid.cells))
+}
+
 /// `Err(message)` when `workers` solves of `case` (with `stress`, if asked) would
 /// not fit in `available` bytes.
 pub fn check(
@@ -32,7 +41,7 @@ pub fn check(
         return Ok(());
     };
     let solve = case.estimated_solve_bytes();
-    let stresses = stress.map_or(0.0, |r| r.estimated_bytes(&case.body, case.grid.cells));
+    let stresses = stress_bytes(case, stress);
     let total = (solve + stresses) * workers.max(1) as f64;
     if total <= available {
         return Ok(());

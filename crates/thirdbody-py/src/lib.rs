@@ -746,15 +746,10 @@ impl SweepPlan {
         }
         let sweep = Sweep::new(&case.text, &case.base, &arguments)
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
-        for index in 0..sweep.len() {
-            let file = sweep.parse_case(index).map_err(to_py_error)?;
-            fits_in_memory(&file).map_err(|e| {
-                PyValueError::new_err(format!(
-                    "sweep case {index} ({}): {e}",
-                    sweep.describe(index)
-                ))
-            })?;
-        }
+        // Each case checked alone: the executor's workers may be other machines.
+        sweep
+            .check_memory(|_| true, 1, thirdbody_cli::memory::available_bytes())
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let file = SweepFile::of(&sweep);
         Ok(SweepPlan {
             sweep,

@@ -27,6 +27,8 @@ pub struct Sweep {
     base_dir: PathBuf,
     ids: Vec<String>,
     maps: MapCache,
+    /// Each case's estimated peak memory (solve and stresses), from [`Sweep::check_cases`].
+    case_bytes: Vec<f64>,
 }
 
 impl Sweep {
@@ -53,6 +55,7 @@ impl Sweep {
             base_dir: base_dir.to_path_buf(),
             ids: Vec::new(),
             maps: MapCache::default(),
+            case_bytes: Vec::new(),
         };
         sweep.ids = (0..sweep.len()).map(|k| sweep.make_id(k)).collect();
         sweep.check_levels()?;
@@ -179,22 +182,59 @@ impl Sweep {
         Ok(())
     }
 
-    /// Every case of the product must be a valid case.
-    fn check_cases(&self) -> Result<(), SweepError> {
+    /// Every case of the product must be a valid case; records each one's memory.
+    fn check_cases(&mut self) -> Result<(), SweepError> {
+        let mut case_bytes = Vec::with_capacity(self.len());
         for index in 0..self.len() {
-            if let Err(e) = self.parse_case(index) {
-                let message = match e {
-                    thirdbody::Error::Parse(m) => strip_line(&m).to_string(),
-                    other => other.to_string(),
-                };
-                return Err(SweepError::Case {
-                    index,
-                    settings: self.describe(index),
-                    message,
-                });
+            match self.parse_case(index) {
+                Ok(file) => case_bytes.push(crate::memory::estimated_bytes(
+                    &file.case,
+                    file.stress.as_ref(),
+                )),
+                Err(e) => {
+                    let message = match e {
+                        thirdbody::Error::Parse(m) => strip_line(&m).to_string(),
+                        other => other.to_string(),
+                    };
+                    return Err(SweepError::Case {
+                        index,
+                        settings: self.describe(index),
+                        message,
+                    });
+                }
             }
         }
+        self.case_bytes = case_bytes;
         Ok(())
+    }
+
+    /// Refuses the cases `mine` says are this run's when the largest of them, solved
+    /// by `workers` at once, would not fit in `available` bytes (issue 14).
+    pub fn check_memory(
+        &self,
+        mine: impl Fn(usize) -> bool,
+        workers: usize,
+        available: Option<f64>,
+    ) -> Result<(), SweepError> {
+        let count = (0..self.len()).filter(|&k| mine(k)).count();
+        let largest = (0..self.len())
+            .filter(|&k| mine(k))
+            .max_by(|&a, &b| self.case_bytes[a].total_cmp(&self.case_bytes[b]));
+        let Some(index) = largest else {
+            return Ok(());
+        };
+        // Parsed once more: the message names the largest case's grid or stresses.
+        let file = self
+            .parse_case(index)
+            .map_err(|e| SweepError::spec(e.to_string()))?;
+        let at_once = workers.clamp(1, count.max(1));
+        crate::memory::check(&file.case, file.stress.as_ref(), at_once, available).map_err(|m| {
+            SweepError::spec(format!(
+                "sweep case {index} ({}), the largest, with {at_once} cases solved at once: \
+                 {m} (fewer --threads, or a smaller grid)",
+                self.describe(index)
+            ))
+        })
     }
 }
 

@@ -74,7 +74,11 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
         .threads
         .map(usize::from)
         .unwrap_or_else(rayon::current_num_threads);
-    check_memory(&sweep, shard, workers, crate::memory::available_bytes())?;
+    sweep.check_memory(
+        |k| shard.is_none_or(|s| s.owns(k)),
+        workers,
+        crate::memory::available_bytes(),
+    )?;
     if args.dry_run {
         if !args.quiet {
             print_cases(&sweep, shard);
@@ -139,47 +143,6 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// Refuses a sweep (or its shard) whose largest case, solved by every worker at once,
-/// would not fit in `available` bytes (issue 14): `workers` cases run side by side.
-/// The estimate is the library's ([`crate::memory::check`]); each case was parsed
-/// and checked when the sweep was made.
-fn check_memory(
-    sweep: &Sweep,
-    shard: Option<Shard>,
-    workers: usize,
-    available: Option<f64>,
-) -> Result<()> {
-    if available.is_none() {
-        return Ok(());
-    }
-    let mine: Vec<usize> = (0..sweep.len())
-        .filter(|&k| shard.is_none_or(|s| s.owns(k)))
-        .collect();
-    let mut largest = None;
-    for &index in &mine {
-        let file = sweep.parse_case(index)?;
-        let stress = file.stress.as_ref().map_or(0.0, |r| {
-            r.estimated_bytes(&file.case.body, file.case.grid.cells)
-        });
-        let bytes = file.case.estimated_solve_bytes() + stress;
-        if largest.as_ref().is_none_or(|(b, _, _)| bytes > *b) {
-            largest = Some((bytes, index, file));
-        }
-    }
-    let Some((_, index, file)) = largest else {
-        return Ok(());
-    };
-    let at_once = workers.clamp(1, mine.len().max(1));
-    crate::memory::check(&file.case, file.stress.as_ref(), at_once, available).map_err(|m| {
-        SweepError::spec(format!(
-            "sweep case {index} ({}), the largest, with {at_once} cases solved at once: {m} \
-             (fewer --threads, or a smaller grid)",
-            sweep.describe(index)
-        ))
-        .into()
-    })
 }
 
 fn print_cases(sweep: &Sweep, shard: Option<Shard>) {
