@@ -72,12 +72,13 @@ impl KernelSpectrum {
     }
 }
 
-/// Per-thread scratch for one plan.
+/// Scratch for one plan: the transforms of one operation at a time, split over the
+/// lanes of [`Parallelism::Rayon`].
 pub struct Convolver {
     plan: Arc<ConvolutionPlan>,
-    /// Half-spectrum rows (row-major, `nx + 1` per row, `ny` rows).
+    /// Half-spectrum rows of the padded field (row-major, `nx + 1` per row, `ny` rows).
     rows: Vec<Complex<f64>>,
-    /// Column-major spectrum of the padded field.
+    /// Column-major spectrum (`nx + 1` columns of `2 ny`) being worked on.
     columns: Vec<Complex<f64>>,
     /// Spectrum of the last forward transform, kept for several kernels.
     field_spectrum: Vec<Complex<f64>>,
@@ -88,7 +89,18 @@ pub struct Convolver {
 struct Lane {
     real: Vec<f64>,
     scratch: Vec<Complex<f64>>,
+    /// [`ROW_BLOCK`] half-spectrum rows gathered from the columns.
+    row_block: Vec<Complex<f64>>,
 }
+
+/// Output rows gathered from the column-major spectrum at once: their entries of one
+/// column are adjacent (one cache line for 4 rows), so the gather reads whole lines.
+const ROW_BLOCK: usize = 4;
+/// Columns gathered from the row-major spectrum at once, for the same reason.
+const COLUMN_BLOCK: usize = 8;
+/// Grids with fewer cells are transformed on one thread whatever the parallelism:
+/// below this the rayon hand-off costs more than it saves.
+pub const PARALLEL_MIN_CELLS: usize = 128 * 128;
 
 impl ConvolutionPlan {
     /// Plans the DC-FFT for fields of `nx x ny` cells.
@@ -106,6 +118,17 @@ impl ConvolutionPlan {
         })
     }
 
+    /// Lanes a transform is split into: one below [`PARALLEL_MIN_CELLS`] or when
+    /// sequential, else the current rayon pool's threads.
+    fn lanes(&self) -> usize {
+        match self.parallelism {
+            Parallelism::Rayon if self.nx * self.ny >= PARALLEL_MIN_CELLS => {
+                rayon::current_num_threads().max(1)
+            }
+            _ => 1,
+        }
+    }
+
     /// Cells along x.
     pub fn nx(&self) -> usize {
         self.nx
@@ -118,10 +141,7 @@ impl ConvolutionPlan {
 
     /// Scratch for one thread of work.
     pub fn convolver(self: &Arc<Self>) -> Convolver {
-        let lanes = match self.parallelism {
-            Parallelism::Sequential => 1,
-            Parallelism::Rayon => rayon::current_num_threads().max(1),
-        };
+        let lanes = self.lanes();
         let scratch_len = self
             .row_forward
             .get_scratch_len()
@@ -138,6 +158,7 @@ impl ConvolutionPlan {
                 .map(|_| Lane {
                     real: vec![0.0; 2 * self.nx],
                     scratch: vec![Complex::default(); scratch_len],
+                    row_block: vec![Complex::default(); ROW_BLOCK * (self.nx + 1)],
                 })
                 .collect(),
         }
@@ -226,8 +247,10 @@ impl Convolver {
 
     /// `out = kernel (*) field`, both `nx x ny` row-major.
     pub fn apply(&mut self, kernel: &KernelSpectrum, field: &[f64], out: &mut [f64]) {
-        self.transform_field(field);
-        self.apply_to_transformed(kernel, out);
+        self.check_sizes(kernel, field.len(), out.len());
+        self.row_stage_forward(field);
+        self.column_stage(ColumnWork::Convolve(kernel));
+        self.row_stage_inverse(out);
     }
 
     /// Forward-transforms a field once, for several [`Self::apply_to_transformed`].
@@ -238,163 +261,211 @@ impl Convolver {
             plan.nx * plan.ny,
             "field size does not match the plan"
         );
-        self.row_stage_forward(field, plan.nx);
-        self.transpose_rows_into_columns();
-        self.column_stage(true);
+        self.row_stage_forward(field);
+        self.column_stage(ColumnWork::Forward);
         std::mem::swap(&mut self.field_spectrum, &mut self.columns);
     }
 
     /// `out = kernel (*) field` for the field last given to [`Self::transform_field`].
     pub fn apply_to_transformed(&mut self, kernel: &KernelSpectrum, out: &mut [f64]) {
-        let plan = Arc::clone(&self.plan);
+        self.check_sizes(kernel, out.len(), out.len());
+        self.column_stage(ColumnWork::Multiply(kernel));
+        self.row_stage_inverse(out);
+    }
+
+    fn check_sizes(&self, kernel: &KernelSpectrum, field: usize, out: usize) {
+        let plan = &self.plan;
         assert!(
             kernel.nx == plan.nx && kernel.ny == plan.ny,
             "kernel of another grid"
         );
-        assert_eq!(
-            out.len(),
-            plan.nx * plan.ny,
-            "output size does not match the plan"
-        );
-        self.columns
-            .iter_mut()
-            .zip(self.field_spectrum.iter().zip(&kernel.values))
-            .for_each(|(c, (f, k))| *c = f * k);
-        self.column_stage(false);
-        self.transpose_columns_into_rows();
-        self.row_stage_inverse(out);
+        let cells = plan.nx * plan.ny;
+        assert_eq!(field, cells, "field size does not match the plan");
+        assert_eq!(out, cells, "output size does not match the plan");
     }
 
     /// Full forward transform of a padded `(2nx) x rows` real array (rows beyond
-    /// `rows` are zero); returns the column-major spectrum.
+    /// `rows` are zero); returns the column-major spectrum. Rows, then columns, are
+    /// split over the pool like the other stages.
     fn forward_padded(&mut self, padded: &[f64], rows: usize) -> Vec<Complex<f64>> {
-        let plan = Arc::clone(&self.plan);
-        let width = 2 * plan.nx;
-        let half = plan.nx + 1;
+        let plan = &self.plan;
+        let (width, half, py) = (2 * plan.nx, plan.nx + 1, 2 * plan.ny);
+        let min_len = if self.lanes.len() == 1 { usize::MAX } else { 1 };
+        let scratch_len = self.lanes[0].scratch.len();
         let mut spectrum_rows = vec![Complex::default(); half * rows];
-        let lane = &mut self.lanes[0];
-        for (src, dst) in padded
-            .chunks_exact(width)
-            .zip(spectrum_rows.chunks_exact_mut(half))
-        {
-            lane.real.copy_from_slice(src);
-            plan.row_forward
-                .process_with_scratch(&mut lane.real, dst, &mut lane.scratch)
-                .expect("row FFT lengths are fixed by the plan");
-        }
-        let py = 2 * plan.ny;
-        for c in 0..half {
-            for r in 0..py {
-                self.columns[c * py + r] = if r < rows {
-                    spectrum_rows[r * half + c]
-                } else {
-                    Complex::default()
-                };
-            }
-        }
-        self.column_stage(true);
-        self.columns.clone()
+        spectrum_rows
+            .par_chunks_mut(half)
+            .zip(padded.par_chunks(width))
+            .with_min_len(min_len)
+            .for_each_init(
+                || (vec![0.0; width], vec![Complex::default(); scratch_len]),
+                |(real, scratch), (dst, src)| {
+                    real.copy_from_slice(src);
+                    plan.row_forward
+                        .process_with_scratch(real, dst, scratch)
+                        .expect("row FFT lengths are fixed by the plan");
+                },
+            );
+        let mut columns = vec![Complex::default(); half * py];
+        columns
+            .par_chunks_mut(py)
+            .enumerate()
+            .with_min_len(min_len)
+            .for_each_init(
+                || vec![Complex::default(); scratch_len],
+                |scratch, (c, col)| {
+                    for (r, v) in col[..rows].iter_mut().enumerate() {
+                        *v = spectrum_rows[r * half + c];
+                    }
+                    plan.column_forward.process_with_scratch(col, scratch);
+                },
+            );
+        columns
     }
 
-    fn row_stage_forward(&mut self, field: &[f64], nx: usize) {
+    /// Real-to-complex transforms of the field's rows, zero-padded to `2 nx`; a row
+    /// that is all zero (outside the contact) has a zero spectrum and is not
+    /// transformed.
+    fn row_stage_forward(&mut self, field: &[f64]) {
         let plan = &self.plan;
-        let half = nx + 1;
+        let (nx, half) = (plan.nx, plan.nx + 1);
         let per_lane = plan.ny.div_ceil(self.lanes.len());
         let process = |first_row: usize, dst_rows: &mut [Complex<f64>], lane: &mut Lane| {
             for (k, dst) in dst_rows.chunks_exact_mut(half).enumerate() {
                 let j = first_row + k;
-                lane.real[..nx].copy_from_slice(&field[j * nx..(j + 1) * nx]);
+                let src = &field[j * nx..(j + 1) * nx];
+                if src.iter().all(|&v| v == 0.0) {
+                    dst.fill(Complex::default());
+                    continue;
+                }
+                lane.real[..nx].copy_from_slice(src);
                 lane.real[nx..].fill(0.0);
                 plan.row_forward
                     .process_with_scratch(&mut lane.real, dst, &mut lane.scratch)
                     .expect("row FFT lengths are fixed by the plan");
             }
         };
-        match plan.parallelism {
-            Parallelism::Sequential => process(0, &mut self.rows, &mut self.lanes[0]),
-            Parallelism::Rayon => self
-                .rows
+        if self.lanes.len() == 1 {
+            process(0, &mut self.rows, &mut self.lanes[0]);
+        } else {
+            self.rows
                 .par_chunks_mut(per_lane * half)
                 .zip(self.lanes.par_iter_mut())
                 .enumerate()
-                .for_each(|(t, (dst, lane))| process(t * per_lane, dst, lane)),
+                .for_each(|(t, (dst, lane))| process(t * per_lane, dst, lane));
         }
     }
 
-    fn row_stage_inverse(&mut self, out: &mut [f64]) {
+    /// The column stage, each lane on its own run of columns: gathers the columns
+    /// from the row spectra (padding with zeros), then transforms forward, or
+    /// multiplies the kept field spectrum by a kernel, or both and transforms back.
+    fn column_stage(&mut self, work: ColumnWork<'_>) {
         let plan = &self.plan;
-        let (nx, half) = (plan.nx, plan.nx + 1);
-        let per_lane = plan.ny.div_ceil(self.lanes.len());
-        let process = |src_rows: &mut [Complex<f64>], dst_rows: &mut [f64], lane: &mut Lane| {
-            for (src, dst) in src_rows
-                .chunks_exact_mut(half)
-                .zip(dst_rows.chunks_exact_mut(nx))
-            {
-                // The first and last bins of a real signal's spectrum are real; drop the
-                // rounding residue so realfft accepts them.
-                src[0].im = 0.0;
-                src[nx].im = 0.0;
-                plan.row_inverse
-                    .process_with_scratch(src, &mut lane.real, &mut lane.scratch)
-                    .expect("row FFT lengths are fixed by the plan");
-                dst.copy_from_slice(&lane.real[..nx]);
+        let (ny, py, half) = (plan.ny, 2 * plan.ny, plan.nx + 1);
+        let per_lane = half.div_ceil(self.lanes.len());
+        let rows = &self.rows;
+        let field_spectrum = &self.field_spectrum;
+        let process = |first_column: usize, cols: &mut [Complex<f64>], lane: &mut Lane| {
+            let span = first_column * py..first_column * py + cols.len();
+            if let ColumnWork::Multiply(kernel) = work {
+                cols.iter_mut()
+                    .zip(&field_spectrum[span.clone()])
+                    .zip(&kernel.values[span])
+                    .for_each(|((c, f), k)| *c = f * k);
+                plan.column_inverse
+                    .process_with_scratch(cols, &mut lane.scratch);
+                return;
+            }
+            // Gather COLUMN_BLOCK columns at a time: each row contributes adjacent
+            // values.
+            for (b, block) in cols.chunks_mut(COLUMN_BLOCK * py).enumerate() {
+                let c0 = first_column + b * COLUMN_BLOCK;
+                let width = block.len() / py;
+                for r in 0..ny {
+                    let src = &rows[r * half + c0..][..width];
+                    for (q, v) in src.iter().enumerate() {
+                        block[q * py + r] = *v;
+                    }
+                }
+                for col in block.chunks_exact_mut(py) {
+                    col[ny..].fill(Complex::default());
+                }
+            }
+            plan.column_forward
+                .process_with_scratch(cols, &mut lane.scratch);
+            if let ColumnWork::Convolve(kernel) = work {
+                cols.iter_mut()
+                    .zip(&kernel.values[span])
+                    .for_each(|(c, k)| *c *= k);
+                plan.column_inverse
+                    .process_with_scratch(cols, &mut lane.scratch);
             }
         };
-        match plan.parallelism {
-            Parallelism::Sequential => process(&mut self.rows, out, &mut self.lanes[0]),
-            Parallelism::Rayon => self
-                .rows
-                .par_chunks_mut(per_lane * half)
-                .zip(out.par_chunks_mut(per_lane * nx))
-                .zip(self.lanes.par_iter_mut())
-                .for_each(|((src, dst), lane)| process(src, dst, lane)),
-        }
-    }
-
-    fn column_stage(&mut self, forward: bool) {
-        let plan = &self.plan;
-        let py = 2 * plan.ny;
-        let fft = if forward {
-            &plan.column_forward
+        if self.lanes.len() == 1 {
+            process(0, &mut self.columns, &mut self.lanes[0]);
         } else {
-            &plan.column_inverse
-        };
-        let columns = plan.nx + 1;
-        let per_lane = columns.div_ceil(self.lanes.len());
-        let process = |cols: &mut [Complex<f64>], lane: &mut Lane| {
-            fft.process_with_scratch(cols, &mut lane.scratch);
-        };
-        match plan.parallelism {
-            Parallelism::Sequential => process(&mut self.columns, &mut self.lanes[0]),
-            Parallelism::Rayon => self
-                .columns
+            self.columns
                 .par_chunks_mut(per_lane * py)
                 .zip(self.lanes.par_iter_mut())
-                .for_each(|(cols, lane)| process(cols, lane)),
+                .enumerate()
+                .for_each(|(t, (cols, lane))| process(t * per_lane, cols, lane));
         }
     }
 
-    /// Rows (`ny x (nx+1)`) into the first `ny` entries of each padded column; the
-    /// padding rows are zero.
-    fn transpose_rows_into_columns(&mut self) {
-        let (half, ny, py) = (self.plan.nx + 1, self.plan.ny, 2 * self.plan.ny);
-        for (c, col) in self.columns.chunks_exact_mut(py).enumerate() {
-            for (r, v) in col[..ny].iter_mut().enumerate() {
-                *v = self.rows[r * half + c];
+    /// Complex-to-real transforms of the first `ny` rows of the column-major
+    /// spectrum, gathered [`ROW_BLOCK`] rows at a time; the padding rows are not
+    /// computed.
+    fn row_stage_inverse(&mut self, out: &mut [f64]) {
+        let plan = &self.plan;
+        let (nx, half, py) = (plan.nx, plan.nx + 1, 2 * plan.ny);
+        let per_lane = plan.ny.div_ceil(self.lanes.len());
+        let columns = &self.columns;
+        let process = |first_row: usize, dst_rows: &mut [f64], lane: &mut Lane| {
+            for (b, dst_block) in dst_rows.chunks_mut(ROW_BLOCK * nx).enumerate() {
+                let r0 = first_row + b * ROW_BLOCK;
+                let count = dst_block.len() / nx;
+                for c in 0..half {
+                    let src = &columns[c * py + r0..][..count];
+                    for (q, v) in src.iter().enumerate() {
+                        lane.row_block[q * half + c] = *v;
+                    }
+                }
+                for (src, dst) in lane
+                    .row_block
+                    .chunks_exact_mut(half)
+                    .zip(dst_block.chunks_exact_mut(nx))
+                {
+                    // The first and last bins of a real signal's spectrum are real;
+                    // drop the rounding residue so realfft accepts them.
+                    src[0].im = 0.0;
+                    src[nx].im = 0.0;
+                    plan.row_inverse
+                        .process_with_scratch(src, &mut lane.real, &mut lane.scratch)
+                        .expect("row FFT lengths are fixed by the plan");
+                    dst.copy_from_slice(&lane.real[..nx]);
+                }
             }
-            col[ny..].fill(Complex::default());
+        };
+        if self.lanes.len() == 1 {
+            process(0, out, &mut self.lanes[0]);
+        } else {
+            out.par_chunks_mut(per_lane * nx)
+                .zip(self.lanes.par_iter_mut())
+                .enumerate()
+                .for_each(|(t, (dst, lane))| process(t * per_lane, dst, lane));
         }
     }
+}
 
-    /// The first `ny` entries of each column back into rows.
-    fn transpose_columns_into_rows(&mut self) {
-        let (half, ny, py) = (self.plan.nx + 1, self.plan.ny, 2 * self.plan.ny);
-        for (c, col) in self.columns.chunks_exact(py).enumerate() {
-            for (r, v) in col[..ny].iter().enumerate() {
-                self.rows[r * half + c] = *v;
-            }
-        }
-    }
+/// What the column stage does after gathering.
+#[derive(Clone, Copy)]
+enum ColumnWork<'a> {
+    /// Forward transform only (the field spectrum is kept).
+    Forward,
+    /// Forward, times the kernel, inverse.
+    Convolve(&'a KernelSpectrum),
+    /// The kept field spectrum times the kernel, inverse.
+    Multiply(&'a KernelSpectrum),
 }
 
 /// Direct O(n^2) summation of the same convolution: the obviously-correct reference

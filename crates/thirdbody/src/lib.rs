@@ -47,6 +47,7 @@ mod kernel_cache;
 pub(crate) mod krylov;
 pub mod layer;
 pub mod operator;
+mod passes;
 pub mod problem;
 pub mod provenance;
 #[cfg(feature = "reference")]

@@ -20,18 +20,27 @@ pub trait InfluenceOperator {
     fn self_coefficient(&self) -> f64;
     /// `w = K p`.
     fn apply(&mut self, p: &[f64], w: &mut [f64]);
+    /// Products `K p` computed so far (for cost accounting; 0 if not counted).
+    fn products(&self) -> usize {
+        0
+    }
 }
 
 /// `K` applied by DC-FFT with a cached kernel spectrum.
 pub struct ConvolutionOperator {
     convolver: Convolver,
     kernel: Arc<KernelSpectrum>,
+    products: usize,
 }
 
 impl ConvolutionOperator {
     /// Pairs a scratch with a kernel spectrum built on the same plan.
     pub fn new(convolver: Convolver, kernel: Arc<KernelSpectrum>) -> Self {
-        ConvolutionOperator { convolver, kernel }
+        ConvolutionOperator {
+            convolver,
+            kernel,
+            products: 0,
+        }
     }
 }
 
@@ -44,6 +53,10 @@ impl InfluenceOperator for ConvolutionOperator {
     }
     fn apply(&mut self, p: &[f64], w: &mut [f64]) {
         self.convolver.apply(&self.kernel, p, w);
+        self.products += 1;
+    }
+    fn products(&self) -> usize {
+        self.products
     }
 }
 

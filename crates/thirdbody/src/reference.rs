@@ -138,6 +138,7 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
                     method: Method::DenseReference,
                     iterations: iteration,
                     linear_iterations: 0,
+                    operator_products: 0,
                     residual: history.last().copied().unwrap_or(0.0),
                     windows: 1,
                     history,

@@ -31,6 +31,9 @@ pub struct SolveInfo {
     pub iterations: usize,
     /// Inner Krylov iterations in total (0 for CG).
     pub linear_iterations: usize,
+    /// Products of the body's influence operator (DC-FFT convolutions) on the final
+    /// window, the solve's unit of cost.
+    pub operator_products: usize,
     /// Final relative complementarity residual (see the contact module).
     pub residual: f64,
     /// Windows tried (the automatic window may enlarge or refit).

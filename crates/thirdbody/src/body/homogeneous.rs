@@ -11,6 +11,7 @@ use super::ElasticBody;
 use crate::case::Elastic;
 use crate::error::Result;
 use crate::stress::{HomogeneousStressKernels, Side, StressKernels};
+use rayon::prelude::*;
 
 /// A homogeneous elastic half-space.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -89,6 +90,7 @@ pub fn homogeneous_surface_kernel_quadrant(
     // corner[l * (nx + 1) + k] = F((k - 1/2) h, (l - 1/2) h)
     let w = nx + 1;
     let corner: Vec<f64> = (0..(ny + 1) * w)
+        .into_par_iter()
         .map(|m| {
             f(
                 (m % w) as f64 * cell - 0.5 * cell,
@@ -97,6 +99,7 @@ pub fn homogeneous_surface_kernel_quadrant(
         })
         .collect();
     (0..nx * ny)
+        .into_par_iter()
         .map(|m| {
             let (i, j) = (m % nx, m / nx);
             let at = |k: usize, l: usize| corner[l * w + k];

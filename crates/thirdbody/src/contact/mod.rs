@@ -23,6 +23,7 @@ use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::kernel_cache::KernelCache;
+use crate::passes::{add_in_order, Passes};
 use crate::problem::ContactProblem;
 use crate::solution::{Method, Solution, SolveInfo};
 
@@ -142,25 +143,39 @@ pub(crate) struct SolveReport {
 /// the largest surface displacement `|w|`, so the measure does not depend on the cell
 /// size: a residual r means gaps within about r W of zero in the contact and pressures
 /// within about r P of zero outside it.
-pub(crate) fn relative_complementarity_residual(p: &[f64], g: &[f64], w: &[f64]) -> f64 {
-    let (mut sum, mut count) = (0.0, 0usize);
-    for &pk in p {
-        if pk > 0.0 {
-            sum += pk;
-            count += 1;
+pub(crate) fn relative_complementarity_residual(
+    passes: &Passes,
+    p: &[f64],
+    g: &[f64],
+    w: &[f64],
+) -> f64 {
+    let n = p.len();
+    let parts = passes.partials(n, |a, b| {
+        let mut part = [0.0, 0.0, 0.0];
+        for k in a..b {
+            if p[k] > 0.0 {
+                part[0] += p[k];
+                part[1] += 1.0;
+            }
+            part[2] = part[2].max(w[k].abs());
         }
-    }
-    let w_max = w.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if count == 0 || w_max == 0.0 {
+        part
+    });
+    let [sum, count, _] = add_in_order(&parts);
+    let w_max = parts.iter().fold(0.0f64, |m, part| m.max(part[2]));
+    if count == 0.0 || w_max == 0.0 {
         return f64::INFINITY;
     }
-    let c = sum / count as f64 / w_max;
-    let (mut num, mut den) = (0.0, 0.0);
-    for (pk, gk) in p.iter().zip(g) {
-        let m = pk.min(c * gk);
-        num += m * m;
-        den += pk * pk;
-    }
+    let c = sum / count / w_max;
+    let [num, den] = passes.sum(n, |a, b| {
+        let mut part = [0.0, 0.0];
+        for k in a..b {
+            let m = p[k].min(c * g[k]);
+            part[0] += m * m;
+            part[1] += p[k] * p[k];
+        }
+        part
+    });
     (num / den).sqrt()
 }
 
@@ -418,6 +433,7 @@ pub fn solve_problem(
                     &problem.shape,
                     &problem.estimate,
                     problem.load,
+                    params.parallelism,
                 );
             }
             let r = newton::semismooth_newton(problem, &mut p, params, observer)?;
@@ -476,6 +492,7 @@ fn finish(
             method,
             iterations: report.iterations,
             linear_iterations: report.linear_iterations,
+            operator_products: problem.influence.products(),
             residual: report.residual,
             windows: 1,
             history: report.history,

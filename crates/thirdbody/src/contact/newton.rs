@@ -13,12 +13,15 @@
 
 use std::ops::ControlFlow;
 
+use rayon::prelude::*;
+
 use super::{relative_complementarity_residual, Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
 use crate::krylov::Gmres;
 use crate::layer::{LayerResponse, NoLayer};
 use crate::operator::InfluenceOperator;
+use crate::passes::{Passes, CHUNK};
 use crate::problem::ContactProblem;
 
 /// Krylov subspace size before a restart.
@@ -35,6 +38,7 @@ const MIN_STEP: f64 = 1.0 / 64.0;
 /// merit `sum min(p, c g)^2`.
 #[allow(clippy::too_many_arguments)]
 fn evaluate(
+    passes: &Passes,
     op: &mut dyn InfluenceOperator,
     layer: &dyn LayerResponse,
     f: &[f64],
@@ -47,13 +51,24 @@ fn evaluate(
 ) -> f64 {
     op.apply(p, wb);
     layer.displacement(p, wl);
-    let mut merit = 0.0;
-    for k in 0..f.len() {
-        g[k] = wb[k] + wl[k] + f[k] - approach;
-        let m = p[k].min(stiffness * g[k]);
-        merit += m * m;
-    }
-    merit
+    let (wb, wl) = (&*wb, &*wl);
+    let parts: Vec<f64> = g
+        .par_chunks_mut(CHUNK)
+        .with_min_len(passes.min_len())
+        .enumerate()
+        .map(|(c, gc)| {
+            let s = c * CHUNK;
+            let mut merit = 0.0;
+            for (k, gk) in gc.iter_mut().enumerate() {
+                let k2 = s + k;
+                *gk = wb[k2] + wl[k2] + f[k2] - approach;
+                let m = p[k2].min(stiffness * *gk);
+                merit += m * m;
+            }
+            merit
+        })
+        .collect();
+    parts.iter().sum()
 }
 
 /// Runs the semi-smooth Newton iteration on `problem` (which has a layer) from `p`
@@ -72,6 +87,10 @@ pub(crate) fn semismooth_newton(
     let cell_area = problem.grid.cell_area();
     let mut monitor = Monitor::new(params, super::NEWTON_STAGNATION_WINDOW, observer);
     let n = f.len();
+    // Passes over the cells are split in fixed chunks (crate::passes): the same bits
+    // on any number of threads.
+    let passes = Passes::new(n, params.parallelism);
+    let min_len = passes.min_len();
     let self_coefficient = op.self_coefficient();
     let layer0 = layer.zero_pressure_self_compliance();
     let stiffness = 1.0 / (self_coefficient + layer0);
@@ -91,14 +110,17 @@ pub(crate) fn semismooth_newton(
     // Approach consistent with the initial pressure: zero mean gap over its support.
     op.apply(p, &mut wb);
     layer.displacement(p, &mut wl);
-    let (mut s, mut c) = (0.0, 0usize);
-    for k in 0..n {
-        if p[k] > 0.0 {
-            s += wb[k] + wl[k] + f[k];
-            c += 1;
+    let [s, c] = passes.sum(n, |a, b| {
+        let mut part = [0.0, 0.0];
+        for k in a..b {
+            if p[k] > 0.0 {
+                part[0] += wb[k] + wl[k] + f[k];
+                part[1] += 1.0;
+            }
         }
-    }
-    let mut approach = s / c.max(1) as f64;
+        part
+    });
+    let mut approach = s / c.max(1.0);
     let mut linear_iterations = 0;
     let mut gmres = Gmres::new(0, 0);
     let mut z1 = vec![0.0; n];
@@ -106,13 +128,18 @@ pub(crate) fn semismooth_newton(
 
     let mut trial = vec![0.0; n];
     let mut merit = evaluate(
-        op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g,
+        &passes, op, layer, f, p, approach, stiffness, &mut wb, &mut wl, &mut g,
     );
     for iteration in 1..=params.max_iterations {
-        for k in 0..n {
-            jp[k] = wb[k] + wl[k];
-        }
-        let residual = relative_complementarity_residual(p, &g, &jp);
+        jp.par_chunks_mut(CHUNK)
+            .zip(wb.par_chunks(CHUNK).zip(wl.par_chunks(CHUNK)))
+            .with_min_len(min_len)
+            .for_each(|(j, (b, l))| {
+                j.iter_mut()
+                    .zip(b.iter().zip(l))
+                    .for_each(|(j, (b, l))| *j = b + l)
+            });
+        let residual = relative_complementarity_residual(&passes, p, &g, &jp);
         if monitor.converged(iteration, residual) {
             return Ok(monitor.report(iteration, linear_iterations, approach));
         }
@@ -215,11 +242,19 @@ pub(crate) fn semismooth_newton(
         // shorter ones where the creep's long reach makes the linearisation poor.
         let mut alpha = 1.0;
         loop {
-            for k in 0..n {
-                trial[k] = p[k] + alpha * (full_in[k] - p[k]);
-            }
+            trial
+                .par_chunks_mut(CHUNK)
+                .zip(p.par_chunks(CHUNK).zip(full_in.par_chunks(CHUNK)))
+                .with_min_len(min_len)
+                .for_each(|(t, (p, x))| {
+                    t.iter_mut()
+                        .zip(p.iter().zip(x))
+                        .for_each(|(t, (p, x))| *t = p + alpha * (x - p))
+                });
             let d = approach + alpha * (x[m] - approach);
-            let m_trial = evaluate(op, layer, f, &trial, d, stiffness, &mut wb, &mut wl, &mut g);
+            let m_trial = evaluate(
+                &passes, op, layer, f, &trial, d, stiffness, &mut wb, &mut wl, &mut g,
+            );
             if m_trial <= (1.0 - 1e-4 * alpha) * merit || alpha <= MIN_STEP {
                 p.copy_from_slice(&trial);
                 approach = d;

@@ -8,10 +8,13 @@
 
 use std::ops::ControlFlow;
 
-use super::{relative_complementarity_residual, Monitor, SolveReport};
+use rayon::prelude::*;
+
+use super::{Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
 use crate::operator::InfluenceOperator;
+use crate::passes::{add_in_order, Passes, CHUNK};
 use crate::problem::ContactProblem;
 
 /// What the user can try when CG stops short.
@@ -35,17 +38,28 @@ pub(crate) fn polonsky_keer(
     let cell_area = problem.grid.cell_area();
     let mut monitor = Monitor::new(params, super::CG_STAGNATION_WINDOW, observer);
     let n = f.len();
+    // Every pass over the cells below is split into fixed chunks (crate::passes), so
+    // the iterates are the same bits on any number of threads.
+    let passes = Passes::new(n, params.parallelism);
+    let min_len = passes.min_len();
     let target_sum = load / cell_area;
-    normalise(p, target_sum);
+    let scale = target_sum / passes.sum(n, |a, b| [p[a..b].iter().sum::<f64>()])[0];
+    if scale.is_finite() {
+        p.par_chunks_mut(CHUNK)
+            .with_min_len(min_len)
+            .for_each(|c| c.iter_mut().for_each(|v| *v *= scale));
+    }
     let mut u = vec![0.0; n];
     let mut g = vec![0.0; n];
     let mut t = vec![0.0; n];
     let mut r = vec![0.0; n];
-    let mut in_contact = vec![false; n];
     let apply = |op: &mut dyn InfluenceOperator, x: &[f64], out: &mut [f64]| {
         op.apply(x, out);
         if winkler != 0.0 {
-            out.iter_mut().zip(x).for_each(|(o, xi)| *o += winkler * xi);
+            out.par_chunks_mut(CHUNK)
+                .zip(x.par_chunks(CHUNK))
+                .with_min_len(min_len)
+                .for_each(|(o, x)| o.iter_mut().zip(x).for_each(|(o, xi)| *o += winkler * xi));
         }
     };
     apply(op, p, &mut u);
@@ -53,18 +67,62 @@ pub(crate) fn polonsky_keer(
     let mut g_old = 1.0;
     let mut since_refresh = 0;
     for iteration in 1..=params.max_iterations {
-        // Gap with D chosen as the mean over the contact.
-        let (mut sum, mut count) = (0.0, 0usize);
-        for k in 0..n {
-            g[k] = u[k] + f[k];
-            if p[k] > 0.0 {
-                sum += g[k];
-                count += 1;
-            }
-        }
-        let approach = sum / count.max(1) as f64;
-        g.iter_mut().for_each(|v| *v -= approach);
-        let residual = relative_complementarity_residual(p, &g, &u);
+        // Gap g = u + f, its sum over the contact (D is its mean there), and the
+        // pressure sums and largest |u| of the residual's scales.
+        let parts: Vec<[f64; 5]> = g
+            .par_chunks_mut(CHUNK)
+            .with_min_len(min_len)
+            .enumerate()
+            .map(|(c, gc)| {
+                let s = c * CHUNK;
+                let mut part = [0.0; 5];
+                for (k, gk) in gc.iter_mut().enumerate() {
+                    let (uk, pk) = (u[s + k], p[s + k]);
+                    *gk = uk + f[s + k];
+                    if pk > 0.0 {
+                        part[0] += *gk;
+                        part[1] += 1.0;
+                        part[2] += pk;
+                    }
+                    part[3] = part[3].max(uk.abs());
+                }
+                part
+            })
+            .collect();
+        let [gap_sum, contact, p_sum, _, _] = add_in_order(&parts);
+        let w_max = parts.iter().fold(0.0f64, |m, part| m.max(part[3]));
+        let approach = gap_sum / contact.max(1.0);
+        // The gap with that D; the complementarity residual's sums (see
+        // `relative_complementarity_residual`) and the squared gap over the contact.
+        let c_scale = p_sum / contact / w_max;
+        let [num, den, big_g] = {
+            let parts: Vec<[f64; 3]> = g
+                .par_chunks_mut(CHUNK)
+                .with_min_len(min_len)
+                .enumerate()
+                .map(|(c, gc)| {
+                    let s = c * CHUNK;
+                    let mut part = [0.0; 3];
+                    for (k, gk) in gc.iter_mut().enumerate() {
+                        *gk -= approach;
+                        let pk = p[s + k];
+                        let m = pk.min(c_scale * *gk);
+                        part[0] += m * m;
+                        part[1] += pk * pk;
+                        if pk > 0.0 {
+                            part[2] += *gk * *gk;
+                        }
+                    }
+                    part
+                })
+                .collect();
+            add_in_order(&parts)
+        };
+        let residual = if contact == 0.0 || w_max == 0.0 {
+            f64::INFINITY
+        } else {
+            (num / den).sqrt()
+        };
         if monitor.converged(iteration, residual) {
             if since_refresh == 0 {
                 return Ok(monitor.report(iteration, 0, approach));
@@ -77,11 +135,6 @@ pub(crate) fn polonsky_keer(
         if let Some(error) = monitor.stop(iteration, residual, || None) {
             return Err(error);
         }
-        in_contact
-            .iter_mut()
-            .zip(p.iter())
-            .for_each(|(c, pk)| *c = *pk > 0.0);
-        let big_g: f64 = (0..n).filter(|&k| in_contact[k]).map(|k| g[k] * g[k]).sum();
         let mut beta = if conjugate { big_g / g_old } else { 0.0 };
         g_old = big_g;
         // The step along t minimises the energy under the load constraint only if
@@ -92,27 +145,38 @@ pub(crate) fn polonsky_keer(
         // negative. Steepest descent (t = g, whose sum over the contact is zero
         // because D is the gap's mean there) always has `den = g.Ag > 0`: restart.
         let (num, den) = loop {
-            for k in 0..n {
-                t[k] = if p[k] > 0.0 { g[k] + beta * t[k] } else { 0.0 };
-            }
+            t.par_chunks_mut(CHUNK)
+                .with_min_len(min_len)
+                .enumerate()
+                .for_each(|(c, tc)| {
+                    let s = c * CHUNK;
+                    for (k, tk) in tc.iter_mut().enumerate() {
+                        *tk = if p[s + k] > 0.0 {
+                            g[s + k] + beta * *tk
+                        } else {
+                            0.0
+                        };
+                    }
+                });
             apply(op, &t, &mut r);
-            let (mut rsum, mut rcount) = (0.0, 0usize);
-            for k in 0..n {
-                if p[k] > 0.0 {
-                    rsum += r[k];
-                    rcount += 1;
+            // Over the contact: sum of r, g.t, r.t and sum of t; the projected
+            // curvature is sum((r - rbar) t) = r.t - rbar sum(t).
+            let [r_sum, g_t, r_t, t_sum] = passes.sum(n, |a, b| {
+                let mut part = [0.0; 4];
+                for k in a..b {
+                    if p[k] > 0.0 {
+                        part[0] += r[k];
+                        part[1] += g[k] * t[k];
+                        part[2] += r[k] * t[k];
+                        part[3] += t[k];
+                    }
                 }
-            }
-            let rbar = rsum / rcount.max(1) as f64;
-            let (mut num, mut den) = (0.0, 0.0);
-            for k in 0..n {
-                if p[k] > 0.0 {
-                    num += g[k] * t[k];
-                    den += (r[k] - rbar) * t[k];
-                }
-            }
+                part
+            });
+            let rbar = r_sum / contact.max(1.0);
+            let den = r_t - rbar * t_sum;
             if (den > 0.0 && den.is_finite()) || beta == 0.0 {
-                break (num, den);
+                break (g_t, den);
             }
             beta = 0.0;
         };
@@ -125,44 +189,61 @@ pub(crate) fn polonsky_keer(
             return Err(monitor.failure(iteration, residual, hint));
         }
         let tau = num / den;
-        let mut projected = false;
-        for k in 0..n {
-            if p[k] > 0.0 {
-                p[k] -= tau * t[k];
-                if p[k] < 0.0 {
-                    p[k] = 0.0;
-                    projected = true;
-                }
-            }
-        }
-        let mut overlap = false;
-        for k in 0..n {
-            // Cells that were not loaded but where the surfaces overlap join the contact.
-            if !in_contact[k] && g[k] < 0.0 {
-                p[k] -= tau * g[k];
-                overlap = true;
-            }
-        }
+        // The step on the contact, projected onto p >= 0; cells that were not loaded
+        // but where the surfaces overlap join the contact. Flags: projected, overlap.
+        let [new_sum, projected, overlap] = {
+            let parts: Vec<[f64; 3]> = p
+                .par_chunks_mut(CHUNK)
+                .with_min_len(min_len)
+                .enumerate()
+                .map(|(c, pc)| {
+                    let s = c * CHUNK;
+                    let mut part = [0.0; 3];
+                    for (k, pk) in pc.iter_mut().enumerate() {
+                        if *pk > 0.0 {
+                            *pk -= tau * t[s + k];
+                            if *pk < 0.0 {
+                                *pk = 0.0;
+                                part[1] = 1.0;
+                            }
+                        } else if g[s + k] < 0.0 {
+                            *pk -= tau * g[s + k];
+                            part[2] = 1.0;
+                        }
+                        part[0] += *pk;
+                    }
+                    part
+                })
+                .collect();
+            add_in_order(&parts)
+        };
+        let (projected, overlap) = (projected > 0.0, overlap > 0.0);
         conjugate = !overlap;
-        let scale = normalise(p, target_sum);
+        let scale = if new_sum > 0.0 {
+            target_sum / new_sum
+        } else {
+            1.0
+        };
         if projected || overlap || since_refresh >= REFRESH_EVERY {
+            p.par_chunks_mut(CHUNK)
+                .with_min_len(min_len)
+                .for_each(|c| c.iter_mut().for_each(|v| *v *= scale));
             apply(op, p, &mut u);
             since_refresh = 0;
         } else {
-            u.iter_mut()
-                .zip(&r)
-                .for_each(|(ui, ri)| *ui = scale * (*ui - tau * ri));
+            p.par_chunks_mut(CHUNK)
+                .zip(u.par_chunks_mut(CHUNK))
+                .zip(r.par_chunks(CHUNK))
+                .with_min_len(min_len)
+                .for_each(|((pc, uc), rc)| {
+                    for ((pk, uk), rk) in pc.iter_mut().zip(uc.iter_mut()).zip(rc) {
+                        *pk *= scale;
+                        *uk = scale * (*uk - tau * rk);
+                    }
+                });
             since_refresh += 1;
         }
     }
     let residual = monitor.last_residual();
     Err(monitor.failure(params.max_iterations, residual, HINT.into()))
-}
-
-/// Scales `p` to the given sum; returns the factor.
-fn normalise(p: &mut [f64], target_sum: f64) -> f64 {
-    let s: f64 = p.iter().sum();
-    let scale = if s > 0.0 { target_sum / s } else { 1.0 };
-    p.iter_mut().for_each(|v| *v *= scale);
-    scale
 }

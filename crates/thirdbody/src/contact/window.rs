@@ -6,7 +6,10 @@
 //! (docs/architecture.md (readings of the paper)). After a solve the window is enlarged if the contact reaches its
 //! edge, and refitted once if the contact fills too little of it.
 
+use rayon::prelude::*;
+
 use crate::case::Case;
+use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::layer::LayerEstimate;
@@ -234,7 +237,13 @@ pub(crate) fn hertz_like_guess(grid: &Grid, f: &[f64], e: &ContactEstimate) -> V
 /// the body's effective compliance `pi a / (2 E*)` (Hertz centre displacement over
 /// peak pressure) plus the linear layer of compliance C0 with its creep, solved row
 /// by row from the leading edge; D is found by bisection on the load.
-pub(crate) fn rigid_base_guess(grid: &Grid, f: &[f64], e: &ContactEstimate, load: f64) -> Vec<f64> {
+pub(crate) fn rigid_base_guess(
+    grid: &Grid,
+    f: &[f64],
+    e: &ContactEstimate,
+    load: f64,
+    parallelism: Parallelism,
+) -> Vec<f64> {
     let (c0, relaxation_time) = e
         .layer
         .map_or((0.0, f64::INFINITY), |l| (l.compliance, l.relaxation_time));
@@ -247,18 +256,27 @@ pub(crate) fn rigid_base_guess(grid: &Grid, f: &[f64], e: &ContactEstimate, load
     let diag = body + c0 * (1.0 + 0.5 * kc);
     let nx = grid.nx;
     let mut p = vec![0.0; f.len()];
+    // Rows are independent; their loads are added in row order, so the guess is the
+    // same on any number of threads.
+    let rows_per_task = crate::passes::Passes::new(f.len(), parallelism).min_rows(nx);
     let sweep = |d: f64, p: &mut [f64]| -> f64 {
-        let mut total = 0.0;
-        for (frow, prow) in f.chunks_exact(nx).zip(p.chunks_exact_mut(nx)) {
-            let mut upstream = 0.0;
-            for i in (0..nx).rev() {
-                let v = ((d - frow[i] - kc * c0 * upstream) / diag).max(0.0);
-                prow[i] = v;
-                upstream += v;
-                total += v;
-            }
-        }
-        total * grid.cell_area()
+        let row_loads: Vec<f64> = f
+            .par_chunks(nx)
+            .zip(p.par_chunks_mut(nx))
+            .with_min_len(rows_per_task)
+            .map(|(frow, prow)| {
+                let mut upstream = 0.0;
+                let mut total = 0.0;
+                for i in (0..nx).rev() {
+                    let v = ((d - frow[i] - kc * c0 * upstream) / diag).max(0.0);
+                    prow[i] = v;
+                    upstream += v;
+                    total += v;
+                }
+                total
+            })
+            .collect();
+        row_loads.iter().sum::<f64>() * grid.cell_area()
     };
     let fmin = f.iter().copied().fold(f64::INFINITY, f64::min);
     let (mut lo, mut hi) = (fmin, fmin + diag * load / grid.cell_area());
@@ -273,6 +291,10 @@ pub(crate) fn rigid_base_guess(grid: &Grid, f: &[f64], e: &ContactEstimate, load
     }
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            // lo and hi are adjacent doubles: no further step changes them.
+            break;
+        }
         if sweep(mid, &mut p) < load {
             lo = mid;
         } else {

@@ -255,15 +255,24 @@ impl ViscoelasticRows {
         let mut diagonal = vec![0.0; n];
         let mut flow_slope = vec![0.0; n];
         let mut forcing_slope = vec![0.0; n];
-        for (k, &pk) in p.iter().enumerate() {
-            let (_, df) = self.forcing(pk);
-            let (_, dq) = self.creep(pk);
-            flow_slope[k] = self.flow_per_cell * dq;
-            forcing_slope[k] = df;
-            let retarded = self.branch_own * df;
-            diagonal[k] =
-                self.glassy_scale * df + 0.5 * flow_slope[k] + retarded + self.upwind * df;
-        }
+        // Cell by cell (the law's evaluations are the cost): split over rows.
+        let rows = (self.nx * 16).max(1);
+        diagonal
+            .par_chunks_mut(rows)
+            .zip(flow_slope.par_chunks_mut(rows))
+            .zip(forcing_slope.par_chunks_mut(rows))
+            .zip(p.par_chunks(rows))
+            .for_each(|(((diagonal, flow_slope), forcing_slope), p)| {
+                for (k, &pk) in p.iter().enumerate() {
+                    let (_, df) = self.forcing(pk);
+                    let (_, dq) = self.creep(pk);
+                    flow_slope[k] = self.flow_per_cell * dq;
+                    forcing_slope[k] = df;
+                    let retarded = self.branch_own * df;
+                    diagonal[k] =
+                        self.glassy_scale * df + 0.5 * flow_slope[k] + retarded + self.upwind * df;
+                }
+            });
         ViscoelasticJacobian {
             upwind: self.upwind,
             nx: self.nx,

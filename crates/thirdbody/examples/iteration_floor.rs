@@ -1,0 +1,299 @@
+//! Issue 13's benchmark: for the Hertz benchmark case and the paper's Fig. 3 case at
+//! 256² to 2048² cells, the solve's time per operator product (one DC-FFT
+//! convolution) on one thread, against the *minimal DC-FFT convolution* measured in
+//! the same run, and the speed-up of N threads over one.
+//!
+//! The floor is written here independently of the library (realfft rows, a blocked
+//! transpose, rustfft columns): the zero-padded `2nx x 2ny` convolution of an
+//! `nx x ny` field that transforms only the `ny` rows holding data, keeps only the
+//! `ny` output rows that are needed, and does nothing else. `conv ms` is the
+//! library's own convolution on one thread. Every time printed is a median of
+//! repeats.
+//!
+//! Run: `cargo run --release -p thirdbody --example iteration_floor -- [--sizes 256,512]
+//! [--threads N] [--cases hertz,fig3] [--repeats R]`
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use realfft::num_complex::Complex;
+use realfft::RealFftPlanner;
+use rustfft::FftPlanner;
+use thirdbody::*;
+
+/// The bundled case file `examples/<name>.toml` with `n x n` cells.
+fn bundled(name: &str, n: usize) -> Case {
+    let path = format!("{}/../../examples/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("bundled example");
+    let mut no_maps = |_: &str, _: f64| -> Result<HeightMap> { unreachable!("no height map") };
+    let mut case = thirdbody::case_file::parse_case_file(&text, &mut no_maps)
+        .expect("valid example")
+        .case;
+    case.grid.cells = [n, n];
+    case
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// The minimal DC-FFT convolution of an `n x n` field, sequential.
+struct Floor {
+    n: usize,
+    row_forward: Arc<dyn realfft::RealToComplex<f64>>,
+    row_inverse: Arc<dyn realfft::ComplexToReal<f64>>,
+    column_forward: Arc<dyn rustfft::Fft<f64>>,
+    column_inverse: Arc<dyn rustfft::Fft<f64>>,
+    kernel: Vec<Complex<f64>>,
+    rows: Vec<Complex<f64>>,
+    columns: Vec<Complex<f64>>,
+    real: Vec<f64>,
+    scratch: Vec<Complex<f64>>,
+}
+
+/// Transposes an `r x c` row-major block into `dst` with row length `dst_stride`, in
+/// tiles so both sides stay in cache.
+fn transpose(src: &[Complex<f64>], r: usize, c: usize, dst: &mut [Complex<f64>], stride: usize) {
+    const TILE: usize = 16;
+    for i0 in (0..r).step_by(TILE) {
+        for j0 in (0..c).step_by(TILE) {
+            for i in i0..(i0 + TILE).min(r) {
+                for j in j0..(j0 + TILE).min(c) {
+                    dst[j * stride + i] = src[i * c + j];
+                }
+            }
+        }
+    }
+}
+
+impl Floor {
+    fn new(n: usize) -> Self {
+        let mut real = RealFftPlanner::<f64>::new();
+        let mut complex = FftPlanner::<f64>::new();
+        let row_forward = real.plan_fft_forward(2 * n);
+        let row_inverse = real.plan_fft_inverse(2 * n);
+        let column_forward = complex.plan_fft_forward(2 * n);
+        let column_inverse = complex.plan_fft_inverse(2 * n);
+        let scratch = row_forward
+            .get_scratch_len()
+            .max(row_inverse.get_scratch_len())
+            .max(column_forward.get_inplace_scratch_len())
+            .max(column_inverse.get_inplace_scratch_len());
+        let half = n + 1;
+        Floor {
+            n,
+            row_forward,
+            row_inverse,
+            column_forward,
+            column_inverse,
+            kernel: (0..half * 2 * n)
+                .map(|k| Complex::new(1.0 / (1.0 + k as f64), 0.0))
+                .collect(),
+            rows: vec![Complex::default(); half * n],
+            columns: vec![Complex::default(); half * 2 * n],
+            real: vec![0.0; 2 * n],
+            scratch: vec![Complex::default(); scratch],
+        }
+    }
+
+    fn convolve(&mut self, field: &[f64], out: &mut [f64]) {
+        let (n, half) = (self.n, self.n + 1);
+        for (src, dst) in field.chunks_exact(n).zip(self.rows.chunks_exact_mut(half)) {
+            self.real[..n].copy_from_slice(src);
+            self.real[n..].fill(0.0);
+            self.row_forward
+                .process_with_scratch(&mut self.real, dst, &mut self.scratch)
+                .unwrap();
+        }
+        for col in self.columns.chunks_exact_mut(2 * n) {
+            col[n..].fill(Complex::default());
+        }
+        transpose(&self.rows, n, half, &mut self.columns, 2 * n);
+        self.column_forward
+            .process_with_scratch(&mut self.columns, &mut self.scratch);
+        self.columns
+            .iter_mut()
+            .zip(&self.kernel)
+            .for_each(|(c, k)| *c *= k);
+        self.column_inverse
+            .process_with_scratch(&mut self.columns, &mut self.scratch);
+        // The first n entries of each column back into rows.
+        const TILE: usize = 16;
+        for c0 in (0..half).step_by(TILE) {
+            for r0 in (0..n).step_by(TILE) {
+                for c in c0..(c0 + TILE).min(half) {
+                    for r in r0..(r0 + TILE).min(n) {
+                        self.rows[r * half + c] = self.columns[c * 2 * n + r];
+                    }
+                }
+            }
+        }
+        for (src, dst) in self
+            .rows
+            .chunks_exact_mut(half)
+            .zip(out.chunks_exact_mut(n))
+        {
+            src[0].im = 0.0;
+            src[n].im = 0.0;
+            self.row_inverse
+                .process_with_scratch(src, &mut self.real, &mut self.scratch)
+                .unwrap();
+            dst.copy_from_slice(&self.real[..n]);
+        }
+    }
+}
+
+fn floor_seconds(n: usize) -> f64 {
+    let mut floor = Floor::new(n);
+    let field: Vec<f64> = (0..n * n).map(|k| ((k * 37) % 11) as f64).collect();
+    let mut out = vec![0.0; n * n];
+    floor.convolve(&field, &mut out);
+    let repeats = (2_000_000_000 / (n * n * 64)).clamp(5, 101);
+    let times: Vec<f64> = (0..repeats)
+        .map(|_| {
+            let t = Instant::now();
+            floor.convolve(&field, &mut out);
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    median(times)
+}
+
+/// The library's own convolution (one thread) on the same field, for comparison.
+fn library_convolution_seconds(n: usize) -> f64 {
+    use thirdbody::convolution::ConvolutionPlan;
+    let plan = ConvolutionPlan::new(n, n, Parallelism::Sequential);
+    let spectrum = plan.kernel_spectrum(|i, j| 1.0 / (1.0 + (i * i + j * j) as f64).sqrt());
+    let mut conv = plan.convolver();
+    let field: Vec<f64> = (0..n * n).map(|k| ((k * 37) % 11) as f64).collect();
+    let mut out = vec![0.0; n * n];
+    conv.apply(&spectrum, &field, &mut out);
+    let repeats = (2_000_000_000 / (n * n * 64)).clamp(5, 101);
+    let times: Vec<f64> = (0..repeats)
+        .map(|_| {
+            let t = Instant::now();
+            conv.apply(&spectrum, &field, &mut out);
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    median(times)
+}
+
+struct Run {
+    seconds: f64,
+    solution: Solution,
+}
+
+fn solve_on(threads: usize, case: &Case, repeats: usize) -> Run {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool");
+    let params = SolverParams::default();
+    let mut times = Vec::new();
+    let mut solution = None;
+    for _ in 0..repeats {
+        let t = Instant::now();
+        let s = pool.install(|| solve(case, &params)).expect("solve");
+        times.push(t.elapsed().as_secs_f64());
+        solution = Some(s);
+    }
+    Run {
+        seconds: median(times),
+        solution: solution.unwrap(),
+    }
+}
+
+fn max_relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs() / scale))
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let value = |flag: &str| {
+        args.iter()
+            .position(|a| a == flag)
+            .and_then(|i| args.get(i + 1).cloned())
+    };
+    let sizes: Vec<usize> = value("--sizes")
+        .unwrap_or_else(|| "256,512,1024,2048".into())
+        .split(',')
+        .map(|s| s.parse().expect("--sizes: comma-separated cell counts"))
+        .collect();
+    let threads: usize = value("--threads")
+        .map(|s| s.parse().expect("--threads: a count"))
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(2, |n| n.get()));
+    let cases: Vec<String> = value("--cases")
+        .unwrap_or_else(|| "hertz,fig3".into())
+        .split(',')
+        .map(str::to_owned)
+        .collect();
+    let repeats_override: Option<usize> =
+        value("--repeats").map(|s| s.parse().expect("--repeats: a count"));
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    println!("load average at start: {}", load.trim());
+    println!(
+        "{:<6} {:>5} {:>5} {:>8} {:>10} {:>10} {:>10} {:>8} {:>6} {:>6} {:>9} {:>9} {:>7} {:>9}",
+        "case",
+        "cells",
+        "iter",
+        "products",
+        "t/iter ms",
+        "t/prod ms",
+        "floor ms",
+        "conv ms",
+        "it/fl",
+        "pr/fl",
+        "1 thr s",
+        format!("{threads} thr s"),
+        "speedup",
+        "max diff"
+    );
+    for name in &cases {
+        let file = match name.as_str() {
+            "hertz" => "hertz_benchmark",
+            "fig3" => "paper_fig3",
+            other => panic!("unknown case {other}: hertz or fig3"),
+        };
+        for &n in &sizes {
+            let case = bundled(file, n);
+            let repeats = repeats_override.unwrap_or(if n >= 2048 {
+                1
+            } else if n >= 1024 {
+                3
+            } else {
+                5
+            });
+            let floor = floor_seconds(n);
+            let library = library_convolution_seconds(n);
+            let one = solve_on(1, &case, repeats);
+            let many = solve_on(threads, &case, repeats);
+            let products = one.solution.info.operator_products;
+            let per_product = one.seconds / products as f64;
+            let per_iteration = one.seconds / one.solution.info.iterations as f64;
+            println!(
+                "{:<6} {:>5} {:>5} {:>8} {:>10.2} {:>10.2} {:>10.2} {:>8.2} {:>6.2} {:>6.2} {:>9.3} {:>9.3} {:>7.2} {:>9.1e}",
+                name,
+                n,
+                one.solution.info.iterations,
+                products,
+                per_iteration * 1e3,
+                per_product * 1e3,
+                floor * 1e3,
+                library * 1e3,
+                per_iteration / floor,
+                per_product / floor,
+                one.seconds,
+                many.seconds,
+                one.seconds / many.seconds,
+                max_relative_difference(&one.solution.pressure, &many.solution.pressure),
+            );
+        }
+    }
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    println!("load average at end: {}", load.trim());
+}
