@@ -11,7 +11,7 @@
 //! repeats.
 //!
 //! Run: `cargo run --release -p thirdbody --example iteration_floor -- [--sizes 256,512]
-//! [--threads N] [--cases hertz,fig3] [--repeats R]`
+//! [--threads N] [--cases hertz,fig3] [--repeats R] [--convolution-only]`
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -236,6 +236,18 @@ fn main() {
         value("--repeats").map(|s| s.parse().expect("--repeats: a count"));
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!("load average at start: {}", load.trim());
+    if args.iter().any(|a| a == "--convolution-only") {
+        for &n in &sizes {
+            let (floor, library) = (floor_seconds(n), library_convolution_seconds(n));
+            println!(
+                "{n:>5}: floor {:.3} ms, library {:.3} ms, ratio {:.3}",
+                floor * 1e3,
+                library * 1e3,
+                library / floor
+            );
+        }
+        return;
+    }
     println!(
         "{:<6} {:>5} {:>5} {:>8} {:>10} {:>10} {:>10} {:>8} {:>6} {:>6} {:>9} {:>9} {:>7} {:>9}",
         "case",
