@@ -336,19 +336,27 @@ pub fn section_map(
 /// Fraction of a section's largest magnitude below which a depth counts as faded.
 pub const FADED: f64 = 0.05;
 
-/// Fraction of a section's largest magnitude below which no contour line is drawn.
+/// Fraction of a section's largest magnitude below which no contour line is drawn,
+/// unless the level lies in the core of a weaker lobe of the other sign ([`LOBE_CORE`]).
 ///
 /// Why: near the surface outside the contact the low levels of tau1 and sigma_x cross
 /// the first two depth rows only (the surface row holds the surface stresses, the next
 /// row already the decay below it), so they come out as slivers hugging the surface
 /// behind or ahead of the contact, where the field is a small fraction of its peak; they
 /// are real values but read as stray fragments and say nothing about the structure under
-/// the contact. The colour map still shows those values. The alternatives were weighed:
-/// dropping small pieces alone misses slivers that are long but one row thin; colour
-/// bands without lines for the low levels need a banded colour bar. 15 % keeps, among
-/// the paper's figures, the tension line at the coating's interface in Fig. 11b (16 % of
-/// the peak), the figure's point, while the levels at 4-12 % go.
+/// the contact. The colour map still shows those values, and the summary and the data
+/// files give them. Of the alternatives, dropping small pieces alone misses slivers that
+/// are long but one row thin, and colour bands without lines for the low levels need a
+/// banded colour bar; small pieces are dropped as well ([`SPECK_SPAN`]).
 pub const LINE_FLOOR: f64 = 0.15;
+
+/// A level of the sign opposite to the field's largest magnitude is drawn, below
+/// [`LINE_FLOOR`], when it reaches this fraction of that sign's extreme and that extreme
+/// reaches [`FADED`] of the peak: a weaker lobe of the other sign (the tension at a
+/// coating's interface, paper Fig. 11b, a quarter of the compressive peak) keeps the
+/// line around its core, while the low levels of the surface's tension outside the
+/// contact (slivers) go.
+pub const LOBE_CORE: f64 = 0.5;
 
 /// Pieces of contour line spanning fewer sample spacings than this along both axes are
 /// not drawn (specks around one or two samples, e.g. at the surface cell where the
@@ -356,17 +364,23 @@ pub const LINE_FLOOR: f64 = 0.15;
 pub const SPECK_SPAN: f64 = 3.0;
 
 /// The contour levels drawn for a field ranging over `lo..=hi`: `contours` levels
-/// dividing the range into `contours + 1` equal parts, without those whose magnitude is
-/// below [`LINE_FLOOR`] of `max(|lo|, |hi|)`. Empty for a flat field or no contours.
+/// dividing the range into `contours + 1` equal parts, of which those whose magnitude
+/// reaches [`LINE_FLOOR`] of `max(|lo|, |hi|)`, or [`LOBE_CORE`] of their own sign's
+/// extreme when that sign is the weaker one and not faded. Empty for a flat field or no
+/// contours.
 fn drawn_levels(lo: f64, hi: f64, contours: usize) -> Vec<f64> {
     if contours == 0 || hi <= lo {
         return Vec::new();
     }
     let peak = lo.abs().max(hi.abs());
     let step = (hi - lo) / (contours + 1) as f64;
+    let core = |l: f64| {
+        let extreme = if l > 0.0 { hi } else { lo };
+        extreme.abs() >= FADED * peak && l / extreme >= LOBE_CORE
+    };
     (1..=contours)
         .map(|m| lo + m as f64 * step)
-        .filter(|l| l.abs() >= LINE_FLOOR * peak)
+        .filter(|&l| l.abs() >= LINE_FLOOR * peak || core(l))
         .collect()
 }
 
