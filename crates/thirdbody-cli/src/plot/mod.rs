@@ -15,9 +15,9 @@
 //! Texts are drawn with the paper's symbols: the ASCII spellings `mu`, `delta`, `tau1`,
 //! `sigma_x`, `E2`, ... in titles, labels and legends become μ, δ, τ₁, σₓ, E₂
 //! (`output::pretty`; CSV columns keep the ASCII names). Maps and profiles along x
-//! note the sliding direction ("slider moves +x →"). Sections show depths down to where
-//! the field has faded and draw no contour line below [`LINE_FLOOR`] of the peak (see
-//! [`section_map`]); the layout rules of line plots (legend
+//! note the sliding direction ("slider moves +x →"). Sections show depths down to the
+//! deepest drawn contour line, and draw no line at levels below [`LINE_FLOOR`] of the
+//! peak (see [`section_map`]); the layout rules of line plots (legend
 //! clear of the data, thinned tick labels, one colour per curve) are in `line`.
 //!
 //! Input with NaN or infinite values, empty series or mismatched lengths is refused with
@@ -254,10 +254,12 @@ fn line_figure(
 /// [`LINE_FLOOR`] of the field's largest magnitude are drawn, and no piece of line that
 /// spans fewer than [`SPECK_SPAN`] samples along both axes (see [`drawn_levels`]).
 ///
-/// Depths shown: from the first row down to the deepest row where the field's magnitude
-/// still reaches [`FADED`] of its largest, plus a margin of a quarter of that depth
-/// range (at least two rows); deeper rows, where the field has faded, are left out
-/// (the caller's data files keep them). A field that does not fade keeps every row.
+/// Depths shown (see [`shown_depths`]): from the first row down to the deepest row where
+/// the field reaches a drawn level, or a depth of [`LINE_FLOOR`] of the peak without
+/// lines, and to any deeper maximum (of either sign, over the rows) that reaches
+/// [`FADED`] of the peak; then a margin of a tenth of that depth (at least two rows),
+/// and at least as deep as fills a panel drawn at equal scales. Deeper rows are left
+/// out of the picture (the caller's data files keep them).
 #[allow(clippy::too_many_arguments)]
 pub fn section_map(
     path: &Path,
@@ -277,7 +279,11 @@ pub fn section_map(
     check_finite("section field", field)?;
     let (lo, hi) = min_max(field);
     let levels = drawn_levels(lo, hi, contours);
-    let nz = shown_depths(zs, nx, field);
+    let width = {
+        let cols = Axis::from_centres(xs);
+        cols.last_edge - cols.first_edge
+    };
+    let nz = shown_depths(zs, nx, field, &levels, map::SECTION_FULL_RATIO * width);
     let (zs, field) = (&zs[..nz], &field[..nz * nx]);
     let (title, x_label, z_label, colour_label) = (
         pretty(title),
@@ -333,7 +339,8 @@ pub fn section_map(
     output::write_figure(path, &figure)
 }
 
-/// Fraction of a section's largest magnitude below which a depth counts as faded.
+/// Fraction of a section's largest magnitude below which a deeper maximum (over the
+/// rows) is not kept in the picture.
 pub const FADED: f64 = 0.05;
 
 /// Fraction of a section's largest magnitude below which no contour line is drawn,
@@ -385,28 +392,65 @@ fn drawn_levels(lo: f64, hi: f64, contours: usize) -> Vec<f64> {
 }
 
 /// How many of the first depth rows of a section (`zs.len()` rows of `nx` values) to
-/// show: down to the deepest row whose largest magnitude reaches [`FADED`] of the
-/// field's, plus a margin of a quarter of the depth range down to there, at least two
-/// rows more, and never fewer than two rows in all.
-fn shown_depths(zs: &[f64], nx: usize, field: &[f64]) -> usize {
+/// show. The deepest row that matters is the deepest where the field reaches one of the
+/// drawn contour `levels` (every drawn line is then in the picture; without levels,
+/// where its magnitude reaches [`LINE_FLOOR`] of the peak), or a deeper maximum over the
+/// rows of the field's positive or negative part that reaches [`FADED`] of the peak
+/// (e.g. the tension at a coating's interface). Below it: a margin of a tenth of the
+/// depth down to there, and at least two rows; and rows spanning (edge to edge) at least
+/// `min_extent`, as far as there are rows, so that an equal-scale panel is filled with
+/// data rather than padded.
+fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], min_extent: f64) -> usize {
     let nz = zs.len();
-    let row_max = |k: usize| {
-        field[k * nx..(k + 1) * nx]
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-    };
-    let largest = (0..nz).map(row_max).fold(0.0f64, f64::max);
-    if largest == 0.0 {
+    let row = |k: usize| &field[k * nx..(k + 1) * nx];
+    let row_hi: Vec<f64> = (0..nz)
+        .map(|k| row(k).iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v)))
+        .collect();
+    let row_lo: Vec<f64> = (0..nz)
+        .map(|k| row(k).iter().fold(f64::INFINITY, |m, &v| m.min(v)))
+        .collect();
+    let peak = (0..nz).fold(0.0f64, |m, k| m.max(row_hi[k].abs()).max(row_lo[k].abs()));
+    if peak == 0.0 {
         return nz;
     }
-    let deepest = (0..nz)
-        .rev()
-        .find(|&k| row_max(k) >= FADED * largest)
-        .unwrap_or(nz - 1);
-    let z_end = zs[deepest] + 0.25 * (zs[deepest] - zs[0]);
+    let reaches = |k: usize| {
+        if levels.is_empty() {
+            row_hi[k].abs().max(row_lo[k].abs()) >= LINE_FLOOR * peak
+        } else {
+            levels
+                .iter()
+                .any(|&l| (l > 0.0 && row_hi[k] >= l) || (l < 0.0 && row_lo[k] <= l))
+        }
+    };
+    let mut deepest = (0..nz).rev().find(|&k| reaches(k)).unwrap_or(nz - 1);
+    // Maxima over the rows of each sign's magnitude, deeper than that (the last row
+    // counts when it is larger than the one above: the field grows out of the section).
+    for part in [
+        row_hi.iter().map(|v| v.max(0.0)).collect::<Vec<f64>>(),
+        row_lo.iter().map(|v| (-v).max(0.0)).collect(),
+    ] {
+        let is_max = |k: usize| {
+            part[k] >= FADED * peak
+                && part[k] >= part[k - 1]
+                && (k + 1 == nz || part[k] > part[k + 1])
+        };
+        if let Some(k) = (deepest + 1..nz).rev().find(|&k| is_max(k)) {
+            deepest = k;
+        }
+    }
+    let z_end = zs[deepest] + MARGIN * (zs[deepest] - zs[0]);
     let by_margin = zs.iter().take_while(|&&z| z <= z_end).count();
-    by_margin.max(deepest + 3).max(2).min(nz)
+    let filling = (2..=nz)
+        .find(|&n| {
+            let rows = Axis::from_centres(&zs[..n]);
+            rows.last_edge - rows.first_edge >= min_extent
+        })
+        .unwrap_or(nz);
+    by_margin.max(deepest + 3).max(filling).min(nz)
 }
+
+/// Margin below the deepest row that matters, as a fraction of its depth.
+const MARGIN: f64 = 0.1;
 
 /// A number with 3 significant digits for annotations.
 fn short(v: f64) -> String {
