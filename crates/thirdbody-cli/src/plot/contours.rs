@@ -252,4 +252,24 @@ mod tests {
             });
         assert_eq!((y_min, y_max), (0.5, 9.5));
     }
+
+    #[test]
+    fn specks_are_dropped_and_larger_pieces_kept() {
+        // A dip of one sample in the middle and a dip of 4 x 4 samples in a corner region:
+        // with a span of 3 only the larger ring remains.
+        let n = 16;
+        let axis = Axis::uniform(n, 0.0, 1.0);
+        let mut values = vec![1.0; n * n];
+        values[8 * n + 8] = 0.0;
+        for j in 2..6 {
+            for i in 2..6 {
+                values[j * n + i] = 0.0;
+            }
+        }
+        let all = contour_lines(&values, &axis, &axis, &[0.5], true, 0.0).unwrap();
+        assert_eq!(all.len(), 2);
+        let kept = contour_lines(&values, &axis, &axis, &[0.5], true, 3.0).unwrap();
+        assert_eq!(kept.len(), 1);
+        assert!(kept[0].iter().all(|&(x, y)| x < 7.0 && y < 7.0), "{kept:?}");
+    }
 }
