@@ -103,12 +103,16 @@ impl Axis {
 /// Polylines (in plot coordinates) where the row-major `values` (`values[row * nx + col]`,
 /// rows along `rows`) cross each of `thresholds`. `smooth`: interpolate the crossing
 /// linearly between samples (else it lies halfway, i.e. on the cell edges).
+/// `min_span`: a piece whose extent is below this many sample spacings along both axes
+/// (a speck around one or two samples, whose shape the grid does not resolve) is left
+/// out; 0 keeps every piece.
 pub(crate) fn contour_lines(
     values: &[f64],
     cols: &Axis,
     rows: &Axis,
     thresholds: &[f64],
     smooth: bool,
+    min_span: f64,
 ) -> Result<Vec<Vec<(f64, f64)>>> {
     let (nx, ny) = (cols.len(), rows.len());
     let lines = ContourBuilder::new(nx, ny, smooth)
@@ -119,7 +123,20 @@ pub(crate) fn contour_lines(
         near(p.0, 0.0) || near(p.0, nx as f64) || near(p.1, 0.0) || near(p.1, ny as f64)
     };
     let border_segment = |a: &Point, b: &Point| on_border(a) || on_border(b);
-    let mut polylines = Vec::new();
+    // Extent of a piece in index coordinates (sample spacings), along each axis.
+    let speck = |piece: &[Point]| {
+        let span = |c: fn(&Point) -> f64| {
+            let (lo, hi) = piece
+                .iter()
+                .map(c)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                    (a.min(v), b.max(v))
+                });
+            hi - lo
+        };
+        span(|p| p.0) < min_span && span(|p| p.1) < min_span
+    };
+    let mut pieces: Vec<Vec<Point>> = Vec::new();
     for line in &lines {
         for string in line.geometry().0.iter() {
             let mut points: Vec<Point> = string.0.iter().map(|c| (c.x, c.y)).collect();
@@ -135,27 +152,31 @@ pub(crate) fn contour_lines(
                 let rotated: Vec<Point> = (0..=m).map(|s| points[(k + s) % m]).collect();
                 points = rotated;
             }
-            let mut current: Vec<(f64, f64)> = Vec::new();
+            let mut current: Vec<Point> = Vec::new();
             for pair in points.windows(2) {
                 if border_segment(&pair[0], &pair[1]) {
                     if current.len() > 1 {
-                        polylines.push(std::mem::take(&mut current));
+                        pieces.push(std::mem::take(&mut current));
                     }
                     current.clear();
                     continue;
                 }
-                let map = |p: &Point| (cols.position(p.0), rows.position(p.1));
                 if current.is_empty() {
-                    current.push(map(&pair[0]));
+                    current.push(pair[0]);
                 }
-                current.push(map(&pair[1]));
+                current.push(pair[1]);
             }
             if current.len() > 1 {
-                polylines.push(current);
+                pieces.push(current);
             }
         }
     }
-    Ok(polylines)
+    let map = |p: &Point| (cols.position(p.0), rows.position(p.1));
+    Ok(pieces
+        .iter()
+        .filter(|piece| !speck(piece))
+        .map(|piece| piece.iter().map(map).collect())
+        .collect())
 }
 
 /// A point in the contour crate's index coordinates.
@@ -200,7 +221,7 @@ mod tests {
                 x * x + y * y
             })
             .collect();
-        let lines = contour_lines(&values, &axis, &axis, &[0.25], true).unwrap();
+        let lines = contour_lines(&values, &axis, &axis, &[0.25], true, 0.0).unwrap();
         assert_eq!(lines.len(), 1);
         for &(x, y) in &lines[0] {
             let r = (x * x + y * y).sqrt();
@@ -217,7 +238,7 @@ mod tests {
         let values: Vec<f64> = (0..n * n)
             .map(|k| if k % n < 3 { 0.0 } else { 1.0 })
             .collect();
-        let lines = contour_lines(&values, &axis, &axis, &[0.5], false).unwrap();
+        let lines = contour_lines(&values, &axis, &axis, &[0.5], false, 0.0).unwrap();
         assert_eq!(lines.len(), 1);
         // Unsmoothed: the line lies on the edge between cells 2 and 3, x = 3, and runs
         // from the first to the last row centre.
@@ -230,5 +251,25 @@ mod tests {
                 (a.min(p.1), b.max(p.1))
             });
         assert_eq!((y_min, y_max), (0.5, 9.5));
+    }
+
+    #[test]
+    fn specks_are_dropped_and_larger_pieces_kept() {
+        // A dip of one sample in the middle and a dip of 4 x 4 samples in a corner region:
+        // with a span of 3 only the larger ring remains.
+        let n = 16;
+        let axis = Axis::uniform(n, 0.0, 1.0);
+        let mut values = vec![1.0; n * n];
+        values[8 * n + 8] = 0.0;
+        for j in 2..6 {
+            for i in 2..6 {
+                values[j * n + i] = 0.0;
+            }
+        }
+        let all = contour_lines(&values, &axis, &axis, &[0.5], true, 0.0).unwrap();
+        assert_eq!(all.len(), 2);
+        let kept = contour_lines(&values, &axis, &axis, &[0.5], true, 3.0).unwrap();
+        assert_eq!(kept.len(), 1);
+        assert!(kept[0].iter().all(|&(x, y)| x < 7.0 && y < 7.0), "{kept:?}");
     }
 }

@@ -24,6 +24,9 @@ const LONG_SIDE: f64 = 640.0;
 /// Shortest side allowed (a very elongated window is padded to keep equal aspect; a
 /// section only below, so that its surface stays at the top edge).
 const SHORT_SIDE_MIN: f64 = 220.0;
+/// Depth over width of the shallowest section drawn at equal scales without padding:
+/// a section shallower than this is padded below (or, under a fifth, stretched).
+pub(crate) const SECTION_FULL_RATIO: f64 = SHORT_SIDE_MIN / LONG_SIDE;
 
 /// A line through points in plot coordinates.
 pub(crate) type Polyline = Vec<(f64, f64)>;

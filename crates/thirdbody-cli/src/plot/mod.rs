@@ -15,8 +15,9 @@
 //! Texts are drawn with the paper's symbols: the ASCII spellings `mu`, `delta`, `tau1`,
 //! `sigma_x`, `E2`, ... in titles, labels and legends become μ, δ, τ₁, σₓ, E₂
 //! (`output::pretty`; CSV columns keep the ASCII names). Maps and profiles along x
-//! note the sliding direction ("slider moves +x →"). Sections show depths down to where
-//! the field has faded (see [`section_map`]); the layout rules of line plots (legend
+//! note the sliding direction ("slider moves +x →"). Sections show depths down to the
+//! deepest drawn contour line, and draw no line at levels below [`LINE_FLOOR`] of the
+//! peak (see [`section_map`]); the layout rules of line plots (legend
 //! clear of the data, thinned tick labels, one colour per curve) are in `line`.
 //!
 //! Input with NaN or infinite values, empty series or mismatched lengths is refused with
@@ -137,7 +138,7 @@ pub fn field_map(
                 .filter(|&v| v > 0.0)
                 .fold(f64::INFINITY, f64::min);
             let lines = if smallest_positive.is_finite() {
-                contour_lines(o, &cols, &rows, &[0.5 * smallest_positive], false)?
+                contour_lines(o, &cols, &rows, &[0.5 * smallest_positive], false, 0.0)?
             } else {
                 Vec::new()
             };
@@ -242,17 +243,23 @@ fn line_figure(
 
 /// Colour map of a vertical section (e.g. a stress component in the XZ plane): `xs`
 /// (len nx), `zs` (len nz, depth, drawn increasing DOWNWARD), `field[k*nx+i]` at
-/// `(xs[i], zs[k])`, both strictly increasing; colour bar; `contours` evenly spaced
-/// contour lines (levels dividing the field's range into `contours + 1` equal parts; 0
-/// for none), and the extreme (the value of largest magnitude) marked by a small cross
-/// labelled with its value and position. Diverging colour map when the field changes
-/// sign, sequential otherwise. Equal scales on x and z unless one extent is more than five
-/// times the other.
+/// `(xs[i], zs[k])`, both strictly increasing; colour bar; contour lines (below), and the
+/// extreme (the value of largest magnitude) marked by a small cross labelled with its
+/// value and position. Diverging colour map when the field changes sign, sequential
+/// otherwise. Equal scales on x and z unless one extent is more than five times the
+/// other.
 ///
-/// Depths shown: from the first row down to the deepest row where the field's magnitude
-/// still reaches [`FADED`] of its largest, plus a margin of a quarter of that depth
-/// range (at least two rows); deeper rows, where the field has faded, are left out
-/// (the caller's data files keep them). A field that does not fade keeps every row.
+/// Contour lines: `contours` evenly spaced levels dividing the field's range into
+/// `contours + 1` equal parts (0 for none), of which only those whose magnitude reaches
+/// [`LINE_FLOOR`] of the field's largest magnitude are drawn, and no piece of line that
+/// spans fewer than [`SPECK_SPAN`] samples along both axes (see [`drawn_levels`]).
+///
+/// Depths shown (see [`shown_depths`]): from the first row down to the deepest row where
+/// the field reaches a drawn level, or a depth of [`LINE_FLOOR`] of the peak without
+/// lines, and to any deeper maximum (of either sign, over the rows) that reaches
+/// [`FADED`] of the peak; then a margin of a tenth of that depth (at least two rows),
+/// and at least as deep as fills a panel drawn at equal scales. Deeper rows are left
+/// out of the picture (the caller's data files keep them).
 #[allow(clippy::too_many_arguments)]
 pub fn section_map(
     path: &Path,
@@ -270,7 +277,13 @@ pub fn section_map(
     let (nx, nz) = (xs.len(), zs.len());
     check_len("section field", field.len(), nx * nz, "xs.len() * zs.len()")?;
     check_finite("section field", field)?;
-    let nz = shown_depths(zs, nx, field);
+    let (lo, hi) = min_max(field);
+    let levels = drawn_levels(lo, hi, contours);
+    let width = {
+        let cols = Axis::from_centres(xs);
+        cols.last_edge - cols.first_edge
+    };
+    let nz = shown_depths(zs, nx, field, &levels, map::SECTION_FULL_RATIO * width);
     let (zs, field) = (&zs[..nz], &field[..nz * nx]);
     let (title, x_label, z_label, colour_label) = (
         pretty(title),
@@ -289,13 +302,10 @@ pub fn section_map(
         })
         .collect();
 
-    let (lo, hi) = min_max(field);
-    let lines = if contours > 0 && hi > lo {
-        let step = (hi - lo) / (contours + 1) as f64;
-        let levels: Vec<f64> = (1..=contours).map(|m| lo + m as f64 * step).collect();
-        contour_lines(&values, &cols, &rows, &levels, true)?
-    } else {
+    let lines = if levels.is_empty() {
         Vec::new()
+    } else {
+        contour_lines(&values, &cols, &rows, &levels, true, SPECK_SPAN)?
     };
 
     let (k_max, &extreme) = field
@@ -329,32 +339,118 @@ pub fn section_map(
     output::write_figure(path, &figure)
 }
 
-/// Fraction of a section's largest magnitude below which a depth counts as faded.
+/// Fraction of a section's largest magnitude below which a deeper maximum (over the
+/// rows) is not kept in the picture.
 pub const FADED: f64 = 0.05;
 
-/// How many of the first depth rows of a section (`zs.len()` rows of `nx` values) to
-/// show: down to the deepest row whose largest magnitude reaches [`FADED`] of the
-/// field's, plus a margin of a quarter of the depth range down to there, at least two
-/// rows more, and never fewer than two rows in all.
-fn shown_depths(zs: &[f64], nx: usize, field: &[f64]) -> usize {
-    let nz = zs.len();
-    let row_max = |k: usize| {
-        field[k * nx..(k + 1) * nx]
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
+/// Fraction of a section's largest magnitude below which no contour line is drawn,
+/// unless the level lies in the core of a weaker lobe of the other sign ([`LOBE_CORE`]).
+///
+/// Why: near the surface outside the contact the low levels of tau1 and sigma_x cross
+/// the first two depth rows only (the surface row holds the surface stresses, the next
+/// row already the decay below it), so they come out as slivers hugging the surface
+/// behind or ahead of the contact, where the field is a small fraction of its peak; they
+/// are real values but read as stray fragments and say nothing about the structure under
+/// the contact. The colour map still shows those values, and the summary and the data
+/// files give them. Of the alternatives, dropping small pieces alone misses slivers that
+/// are long but one row thin, and colour bands without lines for the low levels need a
+/// banded colour bar; small pieces are dropped as well ([`SPECK_SPAN`]).
+pub const LINE_FLOOR: f64 = 0.15;
+
+/// A level of the sign opposite to the field's largest magnitude is drawn, below
+/// [`LINE_FLOOR`], when it reaches this fraction of that sign's extreme and that extreme
+/// reaches [`FADED`] of the peak: a weaker lobe of the other sign (the tension at a
+/// coating's interface, paper Fig. 11b, a quarter of the compressive peak) keeps the
+/// line around its core, while the low levels of the surface's tension outside the
+/// contact (slivers) go.
+pub const LOBE_CORE: f64 = 0.5;
+
+/// Pieces of contour line spanning fewer sample spacings than this along both axes are
+/// not drawn (specks around one or two samples, e.g. at the surface cell where the
+/// pressure jumps at the contact's leading edge: a shape the grid does not resolve).
+pub const SPECK_SPAN: f64 = 3.0;
+
+/// The contour levels drawn for a field ranging over `lo..=hi`: `contours` levels
+/// dividing the range into `contours + 1` equal parts, of which those whose magnitude
+/// reaches [`LINE_FLOOR`] of `max(|lo|, |hi|)`, or [`LOBE_CORE`] of their own sign's
+/// extreme when that sign is the weaker one and not faded. Empty for a flat field or no
+/// contours.
+fn drawn_levels(lo: f64, hi: f64, contours: usize) -> Vec<f64> {
+    if contours == 0 || hi <= lo {
+        return Vec::new();
+    }
+    let peak = lo.abs().max(hi.abs());
+    let step = (hi - lo) / (contours + 1) as f64;
+    let core = |l: f64| {
+        let extreme = if l > 0.0 { hi } else { lo };
+        extreme.abs() >= FADED * peak && l / extreme >= LOBE_CORE
     };
-    let largest = (0..nz).map(row_max).fold(0.0f64, f64::max);
-    if largest == 0.0 {
+    (1..=contours)
+        .map(|m| lo + m as f64 * step)
+        .filter(|&l| l.abs() >= LINE_FLOOR * peak || core(l))
+        .collect()
+}
+
+/// How many of the first depth rows of a section (`zs.len()` rows of `nx` values) to
+/// show. The deepest row that matters is the deepest where the field reaches one of the
+/// drawn contour `levels` (every drawn line is then in the picture; without levels,
+/// where its magnitude reaches [`LINE_FLOOR`] of the peak), or a deeper maximum over the
+/// rows of the field's positive or negative part that reaches [`FADED`] of the peak
+/// (e.g. the tension at a coating's interface). Below it: a margin of a tenth of the
+/// depth down to there, and at least two rows; and rows spanning (edge to edge) at least
+/// `min_extent`, as far as there are rows, so that an equal-scale panel is filled with
+/// data rather than padded.
+fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], min_extent: f64) -> usize {
+    let nz = zs.len();
+    let row = |k: usize| &field[k * nx..(k + 1) * nx];
+    let row_hi: Vec<f64> = (0..nz)
+        .map(|k| row(k).iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v)))
+        .collect();
+    let row_lo: Vec<f64> = (0..nz)
+        .map(|k| row(k).iter().fold(f64::INFINITY, |m, &v| m.min(v)))
+        .collect();
+    let peak = (0..nz).fold(0.0f64, |m, k| m.max(row_hi[k].abs()).max(row_lo[k].abs()));
+    if peak == 0.0 {
         return nz;
     }
-    let deepest = (0..nz)
-        .rev()
-        .find(|&k| row_max(k) >= FADED * largest)
-        .unwrap_or(nz - 1);
-    let z_end = zs[deepest] + 0.25 * (zs[deepest] - zs[0]);
+    let reaches = |k: usize| {
+        if levels.is_empty() {
+            row_hi[k].abs().max(row_lo[k].abs()) >= LINE_FLOOR * peak
+        } else {
+            levels
+                .iter()
+                .any(|&l| (l > 0.0 && row_hi[k] >= l) || (l < 0.0 && row_lo[k] <= l))
+        }
+    };
+    let mut deepest = (0..nz).rev().find(|&k| reaches(k)).unwrap_or(nz - 1);
+    // Maxima over the rows of each sign's magnitude, deeper than that (the last row
+    // counts when it is larger than the one above: the field grows out of the section).
+    for part in [
+        row_hi.iter().map(|v| v.max(0.0)).collect::<Vec<f64>>(),
+        row_lo.iter().map(|v| (-v).max(0.0)).collect(),
+    ] {
+        let is_max = |k: usize| {
+            part[k] >= FADED * peak
+                && part[k] >= part[k - 1]
+                && (k + 1 == nz || part[k] > part[k + 1])
+        };
+        if let Some(k) = (deepest + 1..nz).rev().find(|&k| is_max(k)) {
+            deepest = k;
+        }
+    }
+    let z_end = zs[deepest] + MARGIN * (zs[deepest] - zs[0]);
     let by_margin = zs.iter().take_while(|&&z| z <= z_end).count();
-    by_margin.max(deepest + 3).max(2).min(nz)
+    let filling = (2..=nz)
+        .find(|&n| {
+            let rows = Axis::from_centres(&zs[..n]);
+            rows.last_edge - rows.first_edge >= min_extent
+        })
+        .unwrap_or(nz);
+    by_margin.max(deepest + 3).max(filling).min(nz)
 }
+
+/// Margin below the deepest row that matters, as a fraction of its depth.
+const MARGIN: f64 = 0.1;
 
 /// A number with 3 significant digits for annotations.
 fn short(v: f64) -> String {

@@ -3,14 +3,19 @@
 //! font and placed as plotters' bitmap backend places it (anchor, rotation). Checked: no
 //! two texts overlap, every text lies on the canvas, and the legend box of a line plot
 //! covers neither the largest nor the smallest point of any series (nor, on maps, the
-//! marked extreme's label).
+//! marked extreme's label). For sections, also the depth range (it holds every drawn
+//! contour line and not much more) and the contour lines (no speck, no sliver along the
+//! surface).
 
 use std::path::Path;
 
 use plotters::style::IntoFont;
 
 use super::*;
-use crate::plot::{line_plot, profile_plot, section_map, Series};
+use crate::plot::{
+    drawn_levels, line_plot, map::SECTION_FULL_RATIO, profile_plot, section_map, shown_depths,
+    Series, LINE_FLOOR, LOBE_CORE,
+};
 
 mod data;
 
@@ -417,4 +422,196 @@ fn figures_in_a_folder_are_laid_out_cleanly() {
         }
     }
     assert!(report.is_empty(), "{}", report.join("\n"));
+}
+
+/// The frame of a map's plotting area and its contour lines (pixel points per piece) in
+/// an SVG written by `section_map`.
+fn frame_and_contours(path: &Path) -> (PxBox, Vec<Vec<(f64, f64)>>) {
+    let svg = std::fs::read_to_string(path).unwrap();
+    let mut frame = None;
+    let mut pieces = Vec::new();
+    for piece in svg.split('<').skip(1) {
+        let tag = format!(" {}", piece.split_once('>').map_or(piece, |t| t.0));
+        // The first frame is the plotting area's (the colour bar's comes later).
+        if frame.is_none()
+            && tag.starts_with(" rect ")
+            && attr(&tag, "fill") == Some("none")
+            && attr(&tag, "stroke") == Some("#000000")
+        {
+            let (x, y) = (num(&tag, "x"), num(&tag, "y"));
+            frame = Some([x, y, x + num(&tag, "width"), y + num(&tag, "height")]);
+        } else if tag.starts_with(" polyline ") && attr(&tag, "opacity") == Some("0.75") {
+            pieces.push(
+                attr(&tag, "points")
+                    .unwrap()
+                    .split_whitespace()
+                    .map(|p| {
+                        let (a, b) = p.split_once(',').unwrap();
+                        (a.parse().unwrap(), b.parse().unwrap())
+                    })
+                    .collect(),
+            );
+        }
+    }
+    (frame.expect("no frame"), pieces)
+}
+
+/// The XZ section of tau1 under the paper's Fig. 10a case at 64 cells (the example
+/// file's case with a coarser grid): (xs, zs, tau1).
+fn fig10a_tau1() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let text = include_str!("../../../../../examples/paper_fig10a.toml")
+        .replace("cells = [128, 128]", "cells = [64, 64]");
+    let file = thirdbody::case_file::parse_case_file(&text, &mut |_, _| unreachable!()).unwrap();
+    let solution = thirdbody::solve(&file.case, &file.solver).unwrap();
+    let request = thirdbody::stress::StressRequest {
+        sections: Some(vec![thirdbody::stress::SectionKind::Xz]),
+        ..Default::default()
+    };
+    let results = request
+        .compute(&file.case.body, &solution.grid, &solution.pressure)
+        .unwrap();
+    let f = &results.sections[0].1;
+    (f.xs.clone(), f.zs.clone(), f.tau1())
+}
+
+#[test]
+fn a_paper_section_shows_its_lines_without_specks_or_slivers_and_little_more() {
+    // Paper Fig. 10a: tau1 fades slowly with depth (8 % of its peak at the section's
+    // bottom, three contact half-lengths), while its structure is near the surface.
+    let (xs, zs, tau) = fig10a_tau1();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fig10a.svg");
+    section_map(
+        &path,
+        &xs,
+        &zs,
+        &tau,
+        "tau1",
+        "x'",
+        "z' (depth)",
+        "tau1 / E2",
+        10,
+    )
+    .unwrap();
+    let (frame, pieces) = frame_and_contours(&path);
+    let (nx, nz) = (xs.len(), zs.len());
+    let (lo, hi) = crate::plot::colour::min_max(&tau);
+    let cols = crate::plot::contours::Axis::from_centres(&xs);
+    let fill = SECTION_FULL_RATIO * (cols.last_edge - cols.first_edge);
+    let shown = shown_depths(&zs, nx, &tau, &drawn_levels(lo, hi, 10), fill);
+    assert!(shown < nz * 3 / 4, "{shown} of {nz} depths shown");
+    let (cell_px, row_px) = (
+        (frame[2] - frame[0]) / nx as f64,
+        (frame[3] - frame[1]) / shown as f64,
+    );
+    assert!(!pieces.is_empty());
+    let deepest = pieces.iter().flatten().map(|p| p.1).fold(0.0, f64::max);
+    let below = frame[3] - deepest;
+    assert!(
+        below > 0.0 && below < 0.2 * (frame[3] - frame[1]),
+        "the deepest contour point is {below} px above the panel's bottom {frame:?}"
+    );
+    for piece in &pieces {
+        let span = |c: fn(&(f64, f64)) -> f64| {
+            let (a, b) = piece
+                .iter()
+                .map(c)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                    (a.min(v), b.max(v))
+                });
+            (a, b - a)
+        };
+        let ((_, w), (top, h)) = (span(|p| p.0), span(|p| p.1));
+        assert!(
+            w >= 2.5 * cell_px || h >= 2.5 * row_px,
+            "a speck of {w} x {h} px at the top {top}"
+        );
+        assert!(
+            top + h > frame[1] + 1.5 * row_px,
+            "a sliver along the surface: {w} px long, {h} px deep"
+        );
+    }
+}
+
+#[test]
+fn section_depths_hold_the_drawn_levels_and_deeper_maxima() {
+    let (xs, zs, tau, sigma) = sections();
+    let (nx, nz) = (xs.len(), zs.len());
+    let width = 0.13;
+    let fill = SECTION_FULL_RATIO * width;
+    let row_reaches = |field: &[f64], k: usize, l: f64| {
+        let row = &field[k * nx..(k + 1) * nx];
+        if l > 0.0 {
+            row.iter().any(|&v| v >= l)
+        } else {
+            row.iter().any(|&v| v <= l)
+        }
+    };
+    for (name, field) in [("tau1", &tau), ("sigma_x", &sigma)] {
+        let (lo, hi) = crate::plot::colour::min_max(field);
+        let levels = drawn_levels(lo, hi, 10);
+        let peak = lo.abs().max(hi.abs());
+        assert!(!levels.is_empty());
+        // Low levels go, but a weaker lobe of the other sign keeps its core.
+        let extreme = |l: f64| if l > 0.0 { hi } else { lo };
+        assert!(
+            levels
+                .iter()
+                .all(|&l| l.abs() >= LINE_FLOOR * peak || l / extreme(l) >= LOBE_CORE),
+            "{levels:?}"
+        );
+        assert!(levels.iter().all(|l| l.abs() >= 0.1 * peak), "{levels:?}");
+        let shown = shown_depths(&zs, nx, field, &levels, fill);
+        // Every row where a drawn level is reached is shown, with the next row.
+        let deepest = (0..nz)
+            .filter(|&k| levels.iter().any(|&l| row_reaches(field, k, l)))
+            .max()
+            .unwrap();
+        assert!(
+            shown >= deepest + 2,
+            "{name}: {shown} rows, level reached at {deepest}"
+        );
+        // Not much more: the margin (a tenth of the depth, two rows) or the filling.
+        let z_end = (1.1 * zs[deepest]).max(zs[0] + fill) + 2.0 * (zs[1] - zs[0]);
+        assert!(
+            zs[shown - 1] <= z_end,
+            "{name}: {shown} rows to z = {}",
+            zs[shown - 1]
+        );
+        assert!(shown < nz, "{name}: all {nz} rows shown");
+    }
+    // sigma_x: the tension at z = 0.02 (a quarter of the peak) has its own line.
+    let (lo, hi) = crate::plot::colour::min_max(&sigma);
+    assert!(drawn_levels(lo, hi, 10).iter().any(|&l| l > 0.0));
+
+    // A deeper maximum below the floor (10 % of the peak at z = 0.12) stays in the
+    // picture, though no line is drawn around it.
+    let mut deep = tau.clone();
+    for (k, &z) in zs.iter().enumerate() {
+        for i in 0..nx {
+            deep[k * nx + i] += 9e-5 * (-((z - 0.12) / 0.01).powi(2)).exp();
+        }
+    }
+    let (lo, hi) = crate::plot::colour::min_max(&deep);
+    let shown = shown_depths(&zs, nx, &deep, &drawn_levels(lo, hi, 10), fill);
+    assert!(zs[shown - 1] > 0.12, "{shown} rows");
+
+    // A field still growing at the bottom keeps every row; a field confined to the
+    // surface row fills an equal-scale panel; a zero field keeps every row.
+    let growing: Vec<f64> = zs.iter().flat_map(|&z| xs.iter().map(move |_| z)).collect();
+    let (lo, hi) = crate::plot::colour::min_max(&growing);
+    assert_eq!(
+        shown_depths(&zs, nx, &growing, &drawn_levels(lo, hi, 10), fill),
+        nz
+    );
+    let surface: Vec<f64> = (0..nz * nx)
+        .map(|n| if n < nx { -1.0 } else { 0.0 })
+        .collect();
+    let shown = shown_depths(&zs, nx, &surface, &drawn_levels(-1.0, 0.0, 10), fill);
+    assert!(
+        zs[shown - 1] + 0.5 * (zs[1] - zs[0]) >= fill,
+        "{shown} rows"
+    );
+    assert!(zs[shown - 2] + 0.5 * (zs[1] - zs[0]) < fill, "{shown} rows");
+    assert_eq!(shown_depths(&zs, nx, &vec![0.0; nz * nx], &[], fill), nz);
 }
