@@ -46,6 +46,21 @@ pub enum Side {
     Substrate,
 }
 
+/// How a coated body's stress kernels are computed (`crate::stress::CoatedStressKernels`
+/// picks one per lattice; tests compare them on both sides of each switch).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StressMethod {
+    /// Love's kernels, two carriers and the remainder (lattice sum and Hankel
+    /// transforms): exact, at a cost that grows like `(cell / h1)^2` for thin coatings.
+    Full,
+    /// A coating much thinner than the cell: Love's kernels and the two carriers (the
+    /// long-wave limit and its O(k h1) slope), without the O((k l)^2) remainder.
+    ThinFilm,
+    /// A coating much thicker than the window: Love's kernels of the side's material
+    /// plus the constant the far interface adds.
+    ThickCoating,
+}
+
 /// The six coefficients `[A1, C1, B1, D1, A2, B2]` of the potentials for the
 /// dimensionless thickness `t = k h1`, per unit `p / k^2`.
 fn potential_coefficients(coating: Elastic, substrate: Elastic, t: f64) -> [f64; 6] {

@@ -71,7 +71,8 @@ use super::coated_long_wave::{long_wave_kernels, short_wave_share, BAND_EDGE};
 use super::kernels::{
     HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
 };
-use crate::body::coated_stress::{plane_stress_transfer, Side};
+use crate::body::coated_stress::{plane_stress_transfer, Side, StressMethod};
+use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
 use crate::case::Elastic;
 
@@ -89,6 +90,17 @@ const REACH: f64 = 20.0;
 const SPLIT_SPANS: f64 = 5.0;
 /// Chebyshev panel degree of the tabulated remainder.
 const PANEL_DEGREE: usize = 20;
+/// The coating's half-space (plus a constant) is used where the lattice's diagonal
+/// is below this fraction of h1, as for the surface kernel (`THICK_COATING_S` in
+/// `body/coated.rs`).
+pub const THICK_COATING: f64 = 1e-4;
+/// The thin film (no remainder) is used where the remainder's largest wave-frame
+/// transfer at the wavenumbers `1 / cell` and `pi / cell` is below this. That
+/// transfer falls like `h1^2` and the thin film's error like `h1` (measured on one
+/// cell's coefficients, lattice of 9 x 9: about `0.2 sqrt(transfer)` of the peak for
+/// E1/E2 = 0.3 and 3, `0.03 sqrt(transfer)` for 30), so the error at the switch is
+/// below 1e-3 of the peak (`tests/coated_stress_limits.rs`, docs/validation.md).
+pub const THIN_FILM: f64 = 2.5e-5;
 
 /// Stress kernels of a coated half-space.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -156,14 +168,53 @@ impl CoatedStressKernels {
     }
 }
 
+/// The largest distance from the loaded cell's centre to a corner of an offset's cell.
+fn diagonal(lattice: &OffsetLattice) -> f64 {
+    let h = lattice.cell;
+    let extent = |first: f64, count: usize| {
+        let (a, b) = (first.abs(), (first + count as f64 - 1.0).abs());
+        (a.max(b) + 0.5) * h
+    };
+    extent(lattice.x_first, lattice.cols).hypot(extent(lattice.y_first, lattice.rows))
+}
+
 /// `d/dk` at k = 0 of a function analytic in k (Richardson on two small steps).
 fn slope_at_zero(f: impl Fn(f64) -> [f64; 4], step: f64) -> [f64; 4] {
     let (a, b) = (f(step), f(2.0 * step));
     std::array::from_fn(|q| 2.0 * a[q] / step - b[q] / (2.0 * step))
 }
 
-impl StressKernels for CoatedStressKernels {
-    fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
+impl CoatedStressKernels {
+    /// The method [`StressKernels::fill`] uses on `lattice`: the coating's half-space
+    /// when the lattice's diagonal is below [`THICK_COATING`] h1, the thin film when
+    /// the coating is thinner than a cell and the remainder is below [`THIN_FILM`] at
+    /// the grid's wavenumbers, else the full expansion.
+    pub fn method(&self, lattice: &OffsetLattice) -> StressMethod {
+        let diagonal = diagonal(lattice);
+        if diagonal < THICK_COATING * self.thickness {
+            StressMethod::ThickCoating
+        } else if self.thickness < lattice.cell
+            && self.remainder_at_grid_scale(lattice.cell) < THIN_FILM
+        {
+            StressMethod::ThinFilm
+        } else {
+            StressMethod::Full
+        }
+    }
+
+    /// [`StressKernels::fill`] with a given method (the others are kept for tests
+    /// that measure the error of the switch).
+    pub fn fill_with(
+        &self,
+        z: f64,
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+        method: StressMethod,
+    ) {
+        if method == StressMethod::ThickCoating {
+            self.fill_thick(z, lattice, table);
+            return;
+        }
         let side = self.side(z);
         let material = match side {
             Side::Coating => self.coating,
@@ -171,19 +222,10 @@ impl StressKernels for CoatedStressKernels {
         };
         // 1. Love's kernels of the side's material.
         HomogeneousStressKernels { material }.fill(z, lattice, table);
-        // The decay length of the difference from Love's at large k.
-        let lambda = match side {
-            Side::Coating => 2.0 * self.thickness - z,
-            Side::Substrate => z,
-        };
         // 2. Carriers of the difference's long-wave limit and of its slope at k = 0,
         // with transfers `e^{-k lambda}` and `k lambda e^{-k lambda}`.
-        let (d_xi, d_eta) = self.long_wave_difference(side);
-        let carrier = (d_xi, d_eta, lambda);
-        let r1 = slope_at_zero(
-            |k| self.difference(side, z, carrier, k),
-            1e-4 / (self.thickness + z),
-        );
+        let (carrier, r1) = self.carriers(side, z);
+        let (d_xi, d_eta, lambda) = carrier;
         let [al, be, ga, ep] = r1.map(|r| r / lambda);
         let mut zero = InfluenceTable::default();
         let mut half = InfluenceTable::default();
@@ -217,13 +259,12 @@ impl StressKernels for CoatedStressKernels {
             v[4][n] += ep * zero.values[4][n];
             v[5][n] += ep * zero.values[5][n];
         }
+        if method == StressMethod::ThinFilm {
+            return;
+        }
         // 3. The remainder, O(k^2) at k = 0: its short waves by a periodic lattice
         // sum, its long waves by Hankel transforms.
-        let remainder = |k: f64| -> [f64; 4] {
-            let d = self.difference(side, z, carrier, k);
-            let e = k * (-k * lambda).exp();
-            std::array::from_fn(|q| d[q] - r1[q] * e)
-        };
+        let remainder = |k: f64| self.remainder(side, z, carrier, r1, k);
         let k1 = split_wavenumber(lattice);
         let short = remainder_on_lattice(lattice, lambda, self.thickness, k1, &remainder);
         let long = long_wave_kernels(lattice, k1, &remainder);
@@ -232,6 +273,135 @@ impl StressKernels for CoatedStressKernels {
                 *v += a + b;
             }
         }
+    }
+}
+
+impl CoatedStressKernels {
+    /// The long-wave carrier `(d_xi, d_eta, lambda)` at depth z on `side` (lambda: the
+    /// decay length of the difference from Love's at large k) and the slope `r1` of
+    /// the difference at k = 0.
+    fn carriers(&self, side: Side, z: f64) -> ((f64, f64, f64), [f64; 4]) {
+        let lambda = match side {
+            Side::Coating => 2.0 * self.thickness - z,
+            Side::Substrate => z,
+        };
+        let (d_xi, d_eta) = self.long_wave_difference(side);
+        let carrier = (d_xi, d_eta, lambda);
+        let r1 = slope_at_zero(
+            |k| self.difference(side, z, carrier, k),
+            1e-4 / (self.thickness + z),
+        );
+        (carrier, r1)
+    }
+
+    /// The remainder's wave-frame transfer at k: the difference from Love's minus
+    /// both carriers, O(k^2) at k = 0.
+    fn remainder(
+        &self,
+        side: Side,
+        z: f64,
+        carrier: (f64, f64, f64),
+        r1: [f64; 4],
+        k: f64,
+    ) -> [f64; 4] {
+        let d = self.difference(side, z, carrier, k);
+        let e = k * (-k * carrier.2).exp();
+        std::array::from_fn(|q| d[q] - r1[q] * e)
+    }
+
+    /// The largest wave-frame remainder at the wavenumbers `1 / cell` and `pi / cell`
+    /// at the surface and on both sides of the interface (per unit pressure): about
+    /// `(k l)^2` while the coating's length l (h1, or its membrane length when stiff)
+    /// is short against the cell.
+    pub fn remainder_at_grid_scale(&self, cell: f64) -> f64 {
+        let h1 = self.thickness;
+        let mut largest = 0.0f64;
+        for (z, side) in [
+            (0.0, Side::Coating),
+            (h1, Side::Coating),
+            (h1, Side::Substrate),
+        ] {
+            let (carrier, r1) = self.carriers(side, z);
+            for k in [1.0 / cell, PI / cell] {
+                for v in self.remainder(side, z, carrier, r1, k) {
+                    largest = largest.max(v.abs());
+                }
+            }
+        }
+        // NaN (an overflow) counts as large.
+        if largest.is_nan() {
+            f64::INFINITY
+        } else {
+            largest
+        }
+    }
+
+    /// The coating's half-space: Love's kernels of the side's material plus, on
+    /// every offset, the constant the far interface adds, `cell^2 / (2 pi) int_0^inf
+    /// D(k) k dk` with D the angular mean of the difference of the transfers from
+    /// Love's (sigma_x, sigma_y: `(xixi + etaeta) / 2`; sigma_z: `zz`; the others
+    /// have no mean). The difference varies on the scale h1 in real space, so over a
+    /// window of diagonal W it is that constant to O((W / h1)^2). At depths beyond
+    /// h1 / 2 (far below the window) the whole kernel is the constant of the full
+    /// transfer (to O((W / z)^2)); Love's corner sums would lose every digit there.
+    fn fill_thick(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
+        let side = self.side(z);
+        let (material, nu) = match side {
+            Side::Coating => (self.coating, self.coating.poisson),
+            Side::Substrate => (self.substrate, self.substrate.poisson),
+        };
+        let h1 = self.thickness;
+        let deep = z >= 0.5 * h1;
+        if deep {
+            table.lattice = Some(*lattice);
+            for v in table.values.iter_mut() {
+                v.clear();
+                v.resize(lattice.cols * lattice.rows, 0.0);
+            }
+        } else {
+            HomogeneousStressKernels { material }.fill(z, lattice, table);
+        }
+        // In t = k scale the integrands decay at least like t^3 e^{-t} (deep: e^{-k z};
+        // the difference: e^{-k (2 h1 - z)}, 2 h1 - z > 1.5 h1): panels of 0.25 to
+        // t = 80 leave below 1e-28.
+        let scale = if deep { z } else { h1 };
+        let rule = GaussLegendre::new(8);
+        let mut sums = [0.0; 2];
+        for panel in 0..320 {
+            let lo = 0.25 * panel as f64;
+            for (q, sum) in sums.iter_mut().enumerate() {
+                *sum += rule.integrate(lo, lo + 0.25, |t| {
+                    self.thick_mean(side, z, nu, deep, t / scale)[q] * t
+                });
+            }
+        }
+        let factor = lattice.cell * lattice.cell / (2.0 * PI * scale * scale);
+        let (in_plane, normal) = (sums[0] * factor, sums[1] * factor);
+        for (c, add) in [(0, in_plane), (1, in_plane), (2, normal)] {
+            for v in table.values[c].iter_mut() {
+                *v += add;
+            }
+        }
+    }
+
+    /// The angular means `[(xixi + etaeta) / 2, zz]` of the transfer at k (deep), or of
+    /// its difference from Love's.
+    fn thick_mean(&self, side: Side, z: f64, nu: f64, deep: bool, k: f64) -> [f64; 2] {
+        let t = plane_stress_transfer(self.coating, self.thickness, self.substrate, k, z, side);
+        let (love_in_plane, love_zz) = if deep {
+            (0.0, 0.0)
+        } else {
+            let kz = k * z;
+            let e = (-kz).exp();
+            (0.5 * (-(1.0 - kz) * e - 2.0 * nu * e), -(1.0 + kz) * e)
+        };
+        [0.5 * (t[0] + t[1]) - love_in_plane, t[2] - love_zz]
+    }
+}
+
+impl StressKernels for CoatedStressKernels {
+    fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
+        self.fill_with(z, lattice, table, self.method(lattice));
     }
 }
 
@@ -331,8 +501,11 @@ fn remainder_on_lattice(
     let len = fft_friendly((span + reach).max(2 * span + 2)).max(16);
     let ax = Axis::new(lattice.x_first, aliases, len);
     let ay = Axis::new(lattice.y_first, aliases, len);
-    // Theta = k h of the table: up to the largest alias, capped by the decay.
-    let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max + PI);
+    // Theta = k h of the table: up to the largest alias, capped by the decay (the
+    // sum below reads no theta beyond `theta_max`). Capping at `theta_max` rather
+    // than a period beyond it keeps the table at most 64 panels of the transfer's
+    // scale `h / (2 (lambda + h1))` (lambda >= h1), however thick the coating.
+    let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max);
     // The longest length in the transfer's exponentials is about z + 2 h1 <= 2 lambda + 2 h1.
     // Below k1 / 100 the high-pass factor is below 1e-16.
     let k1h = k1 * h;
