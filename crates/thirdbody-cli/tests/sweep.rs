@@ -169,7 +169,7 @@ fn paper_fig8_mu_falls_with_velocity_and_the_sigmoid_laws_lie_below_the_linear_o
 #[test]
 fn a_killed_sweep_resumes_without_solving_any_case_twice() {
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(dir.path(), &BASE.replace("[32, 32]", "[96, 96]"));
+    let case = write_case(dir.path(), &BASE.replace("[32, 32]", "[128, 128]"));
     let out = dir.path().join("out");
     let args = [
         "sweep",

@@ -606,7 +606,10 @@ mod tests {
                 let mirrored = if r <= ny { r } else { 2 * ny - r };
                 let v = f[c * 2 * ny + r];
                 assert!((v.re - e[c * (ny + 1) + mirrored]).abs() < 1e-15 * 88.0);
-                assert!(v.im.abs() < 1e-15 * 88.0, "an even kernel's spectrum is real");
+                assert!(
+                    v.im.abs() < 1e-15 * 88.0,
+                    "an even kernel's spectrum is real"
+                );
             }
         }
         let field: Vec<f64> = (0..nx * ny).map(|k| ((k * 13) % 7) as f64 - 3.0).collect();
@@ -616,7 +619,10 @@ mod tests {
         conv.apply(&half, &field, &mut b);
         direct_convolution(nx, ny, even, &field, &mut d);
         for k in 0..nx * ny {
-            assert!((a[k] - b[k]).abs() < 1e-13 && (b[k] - d[k]).abs() < 1e-13, "{k}");
+            assert!(
+                (a[k] - b[k]).abs() < 1e-13 && (b[k] - d[k]).abs() < 1e-13,
+                "{k}"
+            );
         }
     }
 

@@ -64,7 +64,10 @@ impl Case {
             grid: *grid,
             body: self.body,
             influence: Box::new(influence),
-            layer: self.layer.as_ref().map(|l| l.on_grid(grid, velocity)),
+            layer: self
+                .layer
+                .as_ref()
+                .map(|l| l.on_grid(grid, velocity, parallelism)),
             shape,
             slope,
             load: self.loading.normal_load,
@@ -90,7 +93,7 @@ impl ContactProblem {
             layer: case
                 .layer
                 .as_ref()
-                .map(|l| l.on_grid(grid, case.velocity())),
+                .map(|l| l.on_grid(grid, case.velocity(), Parallelism::Rayon)),
             shape,
             slope,
             load: case.loading.normal_load,

@@ -23,6 +23,7 @@ pub use law::{ComplianceLaw, LawValue, Table};
 pub use rheology::{CreepForm, Flow, RelaxationBranch, RetardationBranch, Rheology};
 pub use viscoelastic::{ViscoelasticJacobian, ViscoelasticRows};
 
+use crate::convolution::Parallelism;
 use crate::error::{require_positive, Error, Result};
 use crate::grid::Grid;
 
@@ -164,14 +165,18 @@ impl Layer {
 
     /// The layer's response on `grid`'s cells at sliding velocity `velocity` (may be
     /// infinite): the one place where a case's layer picks its implementation.
-    pub fn on_grid(&self, grid: &Grid, velocity: f64) -> Box<dyn LayerResponse> {
-        Box::new(ViscoelasticRows::new(
-            self.clone(),
-            grid.nx,
-            grid.ny,
-            grid.cell,
-            velocity,
-        ))
+    /// Its row passes use the rayon pool when `parallelism` asks for it and the grid
+    /// is large enough to gain ([`crate::convolution::PARALLEL_MIN_CELLS`]).
+    pub fn on_grid(
+        &self,
+        grid: &Grid,
+        velocity: f64,
+        parallelism: Parallelism,
+    ) -> Box<dyn LayerResponse> {
+        Box::new(
+            ViscoelasticRows::new(self.clone(), grid.nx, grid.ny, grid.cell, velocity)
+                .with_parallelism(parallelism),
+        )
     }
 
     /// The linear layer the automatic window and the initial guesses assume: the

@@ -55,6 +55,7 @@ use rayon::prelude::*;
 use super::law::SIGMOID_MONOTONE_DELTA;
 use super::rheology::{CreepForm, Flow};
 use super::{ComplianceLaw, Integration, Layer, LayerLinearisation, LayerResponse};
+use crate::convolution::{Parallelism, PARALLEL_MIN_CELLS};
 
 /// `sum_k u_k v_k` with four partial sums, so that the additions of a long branch
 /// list overlap instead of waiting on each other.
@@ -111,6 +112,9 @@ pub struct ViscoelasticRows {
     upwind: f64,
     /// `sum_k (1 - b_k) C_k / C[0]`: the branches' own response over half a cell.
     branch_own: f64,
+    /// Fewest rows per rayon task (`usize::MAX`: the rows are swept on the calling
+    /// thread).
+    min_rows: usize,
 }
 
 impl ViscoelasticRows {
@@ -156,6 +160,7 @@ impl ViscoelasticRows {
         ViscoelasticRows {
             upwind,
             branch_own,
+            min_rows: 1,
             glassy_scale,
             layer,
             nx,
@@ -165,6 +170,15 @@ impl ViscoelasticRows {
             flow_per_cell,
             branches,
         }
+    }
+
+    /// Splits the row passes over the rayon pool only when `parallelism` asks for it
+    /// and the grid has at least [`PARALLEL_MIN_CELLS`] cells (the default is to
+    /// split).
+    pub fn with_parallelism(mut self, parallelism: Parallelism) -> Self {
+        let parallel = parallelism == Parallelism::Rayon && self.nx * self.ny >= PARALLEL_MIN_CELLS;
+        self.min_rows = if parallel { 1 } else { usize::MAX };
+        self
     }
 
     /// The layer.
@@ -192,7 +206,8 @@ impl ViscoelasticRows {
         // Rows are independent: one per task, each with its own branch states.
         let rows = p
             .par_chunks_exact(self.nx)
-            .zip(w3.par_chunks_exact_mut(self.nx));
+            .zip(w3.par_chunks_exact_mut(self.nx))
+            .with_min_len(self.min_rows);
         rows.for_each_init(
             || vec![0.0; self.branches.len()],
             |state, (prow, wrow)| {
@@ -262,6 +277,7 @@ impl ViscoelasticRows {
             .zip(flow_slope.par_chunks_mut(rows))
             .zip(forcing_slope.par_chunks_mut(rows))
             .zip(p.par_chunks(rows))
+            .with_min_len(self.min_rows)
             .for_each(|(((diagonal, flow_slope), forcing_slope), p)| {
                 for (k, &pk) in p.iter().enumerate() {
                     let (_, df) = self.forcing(pk);
@@ -274,6 +290,7 @@ impl ViscoelasticRows {
                 }
             });
         ViscoelasticJacobian {
+            min_rows: self.min_rows,
             upwind: self.upwind,
             nx: self.nx,
             diagonal,
@@ -318,6 +335,8 @@ pub struct ViscoelasticJacobian {
     take_full_scaled: Vec<f64>,
     /// The upwind correction's weight: `J_i,i+1` has `- upwind dF/dp_{i+1}`.
     upwind: f64,
+    /// As [`ViscoelasticRows`]'s.
+    min_rows: usize,
 }
 
 impl ViscoelasticJacobian {
@@ -341,7 +360,7 @@ impl ViscoelasticJacobian {
     pub fn apply(&self, dp: &[f64], out: &mut [f64]) {
         let nx = self.nx;
         let rows = dp.par_chunks_exact(nx).zip(out.par_chunks_exact_mut(nx));
-        rows.enumerate().for_each_init(
+        rows.with_min_len(self.min_rows).enumerate().for_each_init(
             || vec![0.0; self.keep_half.len()],
             |state, (r, (drow, orow))| {
                 let diag = &self.diagonal[r * nx..(r + 1) * nx];
@@ -377,7 +396,10 @@ impl ViscoelasticJacobian {
     /// replaced by `extra_diagonal` (this is a preconditioner, not an exact solve).
     pub fn solve_restricted(&self, extra_diagonal: f64, active: &[bool], r: &[f64], y: &mut [f64]) {
         let nx = self.nx;
-        let rows = y.par_chunks_exact_mut(nx).enumerate();
+        let rows = y
+            .par_chunks_exact_mut(nx)
+            .with_min_len(self.min_rows)
+            .enumerate();
         rows.for_each_init(
             || vec![0.0; self.keep_half.len()],
             |state, (row, y)| {
