@@ -55,8 +55,9 @@ impl Gmres {
     pub fn reshape(&mut self, n: usize, restart: usize) {
         self.n = n;
         self.restart = restart;
+        // The basis vectors are sized when first written (`solve`): a step that
+        // converges in a few products touches only a few of them.
         self.basis.resize_with(restart + 1, Vec::new);
-        self.basis.iter_mut().for_each(|v| v.resize(n, 0.0));
         self.hessenberg.resize_with(restart, Vec::new);
         self.hessenberg
             .iter_mut()
@@ -96,6 +97,7 @@ impl Gmres {
         loop {
             // r0 = b - A x
             apply(x, &mut self.work);
+            self.basis[0].resize(n, 0.0);
             for ((r, bk), wk) in self.basis[0].iter_mut().zip(b).zip(&self.work) {
                 *r = bk - wk;
             }
@@ -150,6 +152,7 @@ impl Gmres {
                 if h_next > 0.0 {
                     let inv = 1.0 / h_next;
                     let work = &self.work;
+                    self.basis[j + 1].resize(n, 0.0);
                     self.basis[j + 1]
                         .iter_mut()
                         .zip(work)

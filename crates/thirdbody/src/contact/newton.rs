@@ -185,28 +185,39 @@ pub(crate) fn semismooth_newton(
         }
         x[m] = approach;
 
+        // Off the contact set the scattered vectors below stay zero for the whole
+        // step: clear them once here, then only the contact cells are written.
+        full_in
+            .par_chunks_mut(CHUNK)
+            .zip(full_pre.par_chunks_mut(CHUNK))
+            .with_min_len(min_len)
+            .for_each(|(a, b)| {
+                a.fill(0.0);
+                b.fill(0.0);
+            });
         // Preconditioner pieces: z1 = M^-1 1 on the contact set.
-        full_in.fill(0.0);
         for &k in &indices {
             full_in[k] = 1.0;
         }
         jac.solve_restricted(self_coefficient, &active, &full_in, &mut z1);
         let z1_sum: f64 = indices.iter().map(|&k| z1[k]).sum();
 
+        let min_gather = if min_len == 1 { CHUNK } else { usize::MAX };
         let mut apply = |y: &[f64], out: &mut [f64]| {
-            full_in.fill(0.0);
             for (a, &k) in indices.iter().enumerate() {
                 full_in[k] = y[a];
             }
             op.apply(&full_in, &mut full_out);
             jac.apply(&full_in, &mut full_aux);
-            for (a, &k) in indices.iter().enumerate() {
-                out[a] = stiffness * (full_out[k] + full_aux[k] - y[m]);
-            }
+            let (full_out, full_aux) = (&full_out, &full_aux);
+            out[..m]
+                .par_iter_mut()
+                .zip(&indices[..])
+                .with_min_len(min_gather)
+                .for_each(|(o, &k)| *o = stiffness * (full_out[k] + full_aux[k] - y[m]));
             out[m] = load_scale * y[..m].iter().sum::<f64>();
         };
         let mut precondition = |r: &[f64], out: &mut [f64]| {
-            full_pre.fill(0.0);
             for (a, &k) in indices.iter().enumerate() {
                 full_pre[k] = r[a] / stiffness;
             }
@@ -214,9 +225,12 @@ pub(crate) fn semismooth_newton(
             jac.solve_restricted(self_coefficient, &active, &full_pre, &mut full_tri);
             let t_sum: f64 = indices.iter().map(|&k| full_tri[k]).sum();
             let d = (rd - t_sum) / z1_sum;
-            for (a, &k) in indices.iter().enumerate() {
-                out[a] = full_tri[k] + d * z1[k];
-            }
+            let (full_tri, z1) = (&full_tri, &z1);
+            out[..m]
+                .par_iter_mut()
+                .zip(&indices[..])
+                .with_min_len(min_gather)
+                .for_each(|(o, &k)| *o = full_tri[k] + d * z1[k]);
             out[m] = d;
         };
         let eta = (0.01 * residual).clamp(1e-13, 1e-2);

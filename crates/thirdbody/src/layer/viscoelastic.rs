@@ -186,19 +186,29 @@ impl ViscoelasticRows {
         &self.layer
     }
 
-    /// The forcing `F(p)` of the elastic parts (`G(p)` or `C[p] p`) and `dF/dp`.
-    fn forcing(&self, p: f64) -> (f64, f64) {
+    /// The forcing `F(p)` of the elastic parts (`G(p)` or `C[p] p`) and `dF/dp`, and
+    /// the flow's rate density `C[p] p` and its derivative, from one evaluation of
+    /// the law (the costly part of every row pass).
+    fn forcing_and_creep(&self, p: f64) -> ((f64, f64), (f64, f64)) {
         let l = self.layer.law.at(self.reference, p);
-        match self.layer.integration {
+        let creep = (l.compliance * p, l.compliance + l.slope * p.max(0.0));
+        let forcing = match self.layer.integration {
             Integration::Exact => (l.integral, l.compliance),
-            Integration::Secant => (l.compliance * p, l.compliance + l.slope * p.max(0.0)),
-        }
+            Integration::Secant => creep,
+        };
+        (forcing, creep)
     }
 
-    /// The flow's rate density `C[p] p` and its derivative.
+    /// The forcing and its derivative alone (tests).
+    #[cfg(test)]
+    fn forcing(&self, p: f64) -> (f64, f64) {
+        self.forcing_and_creep(p).0
+    }
+
+    /// The flow's rate density and its derivative alone (tests).
+    #[cfg(test)]
     fn creep(&self, p: f64) -> (f64, f64) {
-        let l = self.layer.law.at(self.reference, p);
-        (l.compliance * p, l.compliance + l.slope * p.max(0.0))
+        self.forcing_and_creep(p).1
     }
 
     /// Layer displacement `w3` of every cell: one sweep per row from the leading edge.
@@ -215,8 +225,7 @@ impl ViscoelasticRows {
                 let mut upstream_forcing = 0.0;
                 state.fill(0.0);
                 for i in (0..self.nx).rev() {
-                    let (f, _) = self.forcing(prow[i]);
-                    let (q, _) = self.creep(prow[i]);
+                    let ((f, _), (q, _)) = self.forcing_and_creep(prow[i]);
                     let mut retarded = 0.0;
                     for (b, e) in self.branches.iter().zip(state.iter_mut()) {
                         let force = b.scale * f;
@@ -247,8 +256,7 @@ impl ViscoelasticRows {
             state.fill(0.0);
             let mut row = 0.0;
             for i in (0..self.nx).rev() {
-                let (f, _) = self.forcing(prow[i]);
-                let (q, _) = self.creep(prow[i]);
+                let ((f, _), (q, _)) = self.forcing_and_creep(prow[i]);
                 let mut moved = self.flow_per_cell * q;
                 for (b, e) in self.branches.iter().zip(state.iter_mut()) {
                     let out = b.keep_full * *e + b.take_full * b.scale * f;
@@ -280,8 +288,7 @@ impl ViscoelasticRows {
             .with_min_len(self.min_rows)
             .for_each(|(((diagonal, flow_slope), forcing_slope), p)| {
                 for (k, &pk) in p.iter().enumerate() {
-                    let (_, df) = self.forcing(pk);
-                    let (_, dq) = self.creep(pk);
+                    let ((_, df), (_, dq)) = self.forcing_and_creep(pk);
                     flow_slope[k] = self.flow_per_cell * dq;
                     forcing_slope[k] = df;
                     let retarded = self.branch_own * df;
