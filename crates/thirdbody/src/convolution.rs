@@ -58,9 +58,6 @@ pub struct KernelSpectrum {
     values: SpectrumValues,
     /// The kernel at zero offset (the self-influence of a cell).
     self_coefficient: f64,
-    /// For an even kernel, its quadrant in real space (`[dj * nx + di]`): the
-    /// response to a few point loads is summed from it directly.
-    quadrant: Option<Arc<Vec<f64>>>,
 }
 
 /// The stored values of a kernel spectrum.
@@ -77,46 +74,10 @@ enum SpectrumValues {
 impl KernelSpectrum {
     /// Bytes held by the spectrum.
     pub fn bytes(&self) -> usize {
-        let quadrant = self.quadrant.as_ref().map_or(0, |q| q.len() * 8);
-        quadrant
-            + match &self.values {
-                SpectrumValues::General(v) => v.len() * std::mem::size_of::<Complex<f64>>(),
-                SpectrumValues::Even(v) => v.len() * std::mem::size_of::<f64>(),
-            }
-    }
-
-    /// Adds `sum_k v_k K(x - x_k)` over the given cells `(k, v_k)` to `out`, summed
-    /// directly from the real-space kernel (n operations per cell: cheaper than a
-    /// convolution for a few cells), rows split over the pool when `parallel`. Each
-    /// output cell adds the loads in the order given, on any number of threads.
-    /// Returns false (and does nothing) when the kernel was not given in real space.
-    pub fn add_point_responses(
-        &self,
-        cells: &[(usize, f64)],
-        out: &mut [f64],
-        min_rows: usize,
-    ) -> bool {
-        let Some(quadrant) = &self.quadrant else {
-            return false;
-        };
-        let nx = self.nx;
-        out.par_chunks_mut(nx)
-            .with_min_len(min_rows)
-            .enumerate()
-            .for_each(|(j, row)| {
-                for &(k, v) in cells {
-                    let (ik, jk) = (k % nx, k / nx);
-                    let q = &quadrant[j.abs_diff(jk) * nx..][..nx];
-                    // Offsets |i - ik|: ik - i before the load, i - ik from it on.
-                    let (before, after) = row.split_at_mut(ik);
-                    before
-                        .iter_mut()
-                        .zip(q[1..=ik].iter().rev())
-                        .for_each(|(o, q)| *o += v * q);
-                    after.iter_mut().zip(q).for_each(|(o, q)| *o += v * q);
-                }
-            });
-        true
+        match &self.values {
+            SpectrumValues::General(v) => v.len() * std::mem::size_of::<Complex<f64>>(),
+            SpectrumValues::Even(v) => v.len() * std::mem::size_of::<f64>(),
+        }
     }
 
     /// Multiplies the columns from `first_column` on (`2 ny` values each) by the
@@ -313,7 +274,6 @@ impl ConvolutionPlan {
             .collect();
         KernelSpectrum {
             values: SpectrumValues::Even(even),
-            quadrant: Some(Arc::new(quadrant.to_vec())),
             ..general
         }
     }
@@ -330,7 +290,6 @@ impl ConvolutionPlan {
             ny,
             values: SpectrumValues::General(values.into_iter().map(|v| v * scale).collect()),
             self_coefficient,
-            quadrant: None,
         }
     }
 }
@@ -665,38 +624,6 @@ mod tests {
                 "{k}"
             );
         }
-    }
-
-    #[test]
-    fn point_responses_from_the_quadrant_equal_the_convolution() {
-        let (nx, ny) = (13, 9);
-        let even = |di: i64, dj: i64| 1.0 / (1.0 + (di * di) as f64 + 0.7 * (dj * dj) as f64);
-        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
-        let quadrant: Vec<f64> = (0..nx * ny)
-            .map(|k| even((k % nx) as i64, (k / nx) as i64))
-            .collect();
-        let spectrum = plan.even_kernel_spectrum(&quadrant);
-        // Loads at a corner, an edge and inside, one cell twice.
-        let cells = [
-            (0, 1.5),
-            (nx - 1, -0.5),
-            (4 * nx + 6, 2.0),
-            (ny * nx - 1, 0.25),
-            (0, 0.5),
-        ];
-        let mut field = vec![0.0; nx * ny];
-        for &(k, v) in &cells {
-            field[k] += v;
-        }
-        let (mut direct, mut fast) = (vec![0.0; nx * ny], vec![1.0; nx * ny]);
-        direct_convolution(nx, ny, even, &field, &mut direct);
-        assert!(spectrum.add_point_responses(&cells, &mut fast, usize::MAX));
-        for k in 0..nx * ny {
-            assert!((fast[k] - 1.0 - direct[k]).abs() < 1e-14, "{k}");
-        }
-        // A general kernel has no real-space table.
-        let general = plan.kernel_spectrum(even);
-        assert!(!general.add_point_responses(&cells, &mut fast, usize::MAX));
     }
 
     #[test]

@@ -24,12 +24,6 @@ pub trait InfluenceOperator {
     fn products(&self) -> usize {
         0
     }
-    /// Adds `K d` for a `d` that is zero but on the given cells `(k, d_k)`, summed
-    /// directly, with rows split in runs of `min_rows` (`usize::MAX`: one thread);
-    /// false (nothing done) when the operator cannot.
-    fn add_sparse(&self, _cells: &[(usize, f64)], _out: &mut [f64], _min_rows: usize) -> bool {
-        false
-    }
 }
 
 /// `K` applied by DC-FFT with a cached kernel spectrum.
@@ -63,9 +57,6 @@ impl InfluenceOperator for ConvolutionOperator {
     }
     fn products(&self) -> usize {
         self.products
-    }
-    fn add_sparse(&self, cells: &[(usize, f64)], out: &mut [f64], min_rows: usize) -> bool {
-        self.kernel.add_point_responses(cells, out, min_rows)
     }
 }
 

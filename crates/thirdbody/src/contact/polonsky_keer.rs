@@ -22,13 +22,6 @@ const HINT: &str = "raise solver.max_iterations or solver.tolerance";
 
 /// Exact recomputation of `A p` at least this often, against drift of the updates.
 const REFRESH_EVERY: usize = 20;
-/// What one chunk of the projected step returns: its pressure sum, the cells whose
-/// value differs from the plain step with that difference, and whether any joined.
-type StepChunk = (f64, Vec<(usize, f64)>, bool);
-
-/// Most cells changed by the projection whose response is added directly (n
-/// multiply-adds each, against ~30 n for a convolution) instead of recomputing `A p`.
-const SPARSE_CHANGES: usize = 24;
 
 /// Runs PK-CG on `problem` (whose operator is `K + winkler I`) from the positive
 /// initial pressure in `p` (overwritten).
@@ -49,7 +42,6 @@ pub(crate) fn polonsky_keer(
     // the iterates are the same bits on any number of threads.
     let passes = Passes::new(n, params.parallelism);
     let min_len = passes.min_len();
-    let min_rows = passes.min_rows(problem.grid.nx);
     let target_sum = load / cell_area;
     let scale = target_sum / passes.sum(n, |a, b| [p[a..b].iter().sum::<f64>()])[0];
     if scale.is_finite() {
@@ -198,62 +190,41 @@ pub(crate) fn polonsky_keer(
         }
         let tau = num / den;
         // The step on the contact, projected onto p >= 0; cells that were not loaded
-        // but where the surfaces overlap join the contact. Each chunk returns its
-        // new pressure sum and the cells where the result differs from the plain
-        // step p - tau t (clamped to zero, or joining), with that difference.
-        let parts: Vec<StepChunk> = p
-            .par_chunks_mut(CHUNK)
-            .with_min_len(min_len)
-            .enumerate()
-            .map(|(c, pc)| {
-                let s = c * CHUNK;
-                let (mut sum, mut changed, mut overlap) = (0.0, Vec::new(), false);
-                for (k, pk) in pc.iter_mut().enumerate() {
-                    if *pk > 0.0 {
-                        *pk -= tau * t[s + k];
-                        if *pk < 0.0 {
-                            changed.push((s + k, -*pk));
-                            *pk = 0.0;
+        // but where the surfaces overlap join the contact. Flags: projected, overlap.
+        let [new_sum, projected, overlap] = {
+            let parts: Vec<[f64; 3]> = p
+                .par_chunks_mut(CHUNK)
+                .with_min_len(min_len)
+                .enumerate()
+                .map(|(c, pc)| {
+                    let s = c * CHUNK;
+                    let mut part = [0.0; 3];
+                    for (k, pk) in pc.iter_mut().enumerate() {
+                        if *pk > 0.0 {
+                            *pk -= tau * t[s + k];
+                            if *pk < 0.0 {
+                                *pk = 0.0;
+                                part[1] = 1.0;
+                            }
+                        } else if g[s + k] < 0.0 {
+                            *pk -= tau * g[s + k];
+                            part[2] = 1.0;
                         }
-                    } else if g[s + k] < 0.0 {
-                        *pk -= tau * g[s + k];
-                        changed.push((s + k, *pk));
-                        overlap = true;
+                        part[0] += *pk;
                     }
-                    sum += *pk;
-                }
-                (sum, changed, overlap)
-            })
-            .collect();
-        let new_sum: f64 = parts.iter().map(|part| part.0).sum();
-        let overlap = parts.iter().any(|part| part.2);
-        let changed: Vec<(usize, f64)> = parts.into_iter().flat_map(|part| part.1).collect();
+                    part
+                })
+                .collect();
+            add_in_order(&parts)
+        };
+        let (projected, overlap) = (projected > 0.0, overlap > 0.0);
         conjugate = !overlap;
         let scale = if new_sum > 0.0 {
             target_sum / new_sum
         } else {
             1.0
         };
-        // A p after the step is A (p - tau t) + A (changes) = u - tau r + A (changes):
-        // a few changed cells are added directly from the real-space kernel, many
-        // (early on) or a periodic refresh recompute A p by convolution.
-        let mut exact = since_refresh >= REFRESH_EVERY || changed.len() > SPARSE_CHANGES;
-        if !exact {
-            u.par_chunks_mut(CHUNK)
-                .zip(r.par_chunks(CHUNK))
-                .with_min_len(min_len)
-                .for_each(|(uc, rc)| uc.iter_mut().zip(rc).for_each(|(uk, rk)| *uk -= tau * rk));
-            if !changed.is_empty() {
-                // An operator that cannot (a dense test matrix) leaves u to the refresh.
-                exact = !op.add_sparse(&changed, &mut u, min_rows);
-                if winkler != 0.0 {
-                    for &(k, d) in &changed {
-                        u[k] += winkler * d;
-                    }
-                }
-            }
-        }
-        if exact {
+        if projected || overlap || since_refresh >= REFRESH_EVERY {
             p.par_chunks_mut(CHUNK)
                 .with_min_len(min_len)
                 .for_each(|c| c.iter_mut().for_each(|v| *v *= scale));
@@ -262,11 +233,12 @@ pub(crate) fn polonsky_keer(
         } else {
             p.par_chunks_mut(CHUNK)
                 .zip(u.par_chunks_mut(CHUNK))
+                .zip(r.par_chunks(CHUNK))
                 .with_min_len(min_len)
-                .for_each(|(pc, uc)| {
-                    for (pk, uk) in pc.iter_mut().zip(uc.iter_mut()) {
+                .for_each(|((pc, uc), rc)| {
+                    for ((pk, uk), rk) in pc.iter_mut().zip(uc.iter_mut()).zip(rc) {
                         *pk *= scale;
-                        *uk *= scale;
+                        *uk = scale * (*uk - tau * rk);
                     }
                 });
             since_refresh += 1;
