@@ -7,18 +7,11 @@ use std::hint::black_box;
 use std::time::Duration;
 use thirdbody::*;
 
+#[path = "../tests/bundled/mod.rs"]
+mod bundled;
+
 fn fig3(n: usize) -> Case {
-    let path = format!(
-        "{}/../../examples/paper_fig3.toml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).expect("bundled example");
-    let mut no_maps = |_: &str, _: f64| -> Result<HeightMap> { unreachable!("no height map") };
-    let mut case = thirdbody::case_file::parse_case_file(&text, &mut no_maps)
-        .expect("valid example")
-        .case;
-    case.grid.cells = [n, n];
-    case
+    bundled::bundled("paper_fig3", n)
 }
 
 /// The Fig. 3 case with a Prony layer of the same zero-pressure compliance 0.02:

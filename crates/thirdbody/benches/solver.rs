@@ -8,17 +8,9 @@ use std::hint::black_box;
 use std::time::Duration;
 use thirdbody::*;
 
-/// A bundled case file with `n x n` cells.
-fn bundled(name: &str, n: usize) -> Case {
-    let path = format!("{}/../../examples/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).expect("bundled example");
-    let mut no_maps = |_: &str, _: f64| -> Result<HeightMap> { unreachable!("no height map") };
-    let mut case = thirdbody::case_file::parse_case_file(&text, &mut no_maps)
-        .expect("valid example")
-        .case;
-    case.grid.cells = [n, n];
-    case
-}
+#[path = "../tests/bundled/mod.rs"]
+mod bundled;
+use bundled::bundled;
 
 fn bench(c: &mut Criterion) {
     let params = SolverParams::default();

@@ -10,17 +10,9 @@ use std::time::Instant;
 use thirdbody::reference::solve_dense;
 use thirdbody::*;
 
-/// The bundled case file `examples/<kind>.toml` with `n x n` cells.
-fn case(kind: &str, n: usize) -> Case {
-    let path = format!("{}/../../examples/{kind}.toml", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).expect("bundled example");
-    let mut no_maps = |_: &str, _: f64| -> Result<HeightMap> { unreachable!("no height map") };
-    let mut c = thirdbody::case_file::parse_case_file(&text, &mut no_maps)
-        .expect("valid example")
-        .case;
-    c.grid.cells = [n, n];
-    c
-}
+#[path = "../tests/bundled/mod.rs"]
+mod bundled;
+use bundled::bundled as case;
 
 /// Peak resident set size of this process, from /proc (Linux), in MiB.
 fn peak_rss_mib() -> f64 {

@@ -7,16 +7,8 @@
 use thirdbody::convolution::{direct_convolution, ConvolutionPlan, PARALLEL_MIN_CELLS};
 use thirdbody::*;
 
-fn bundled(name: &str, n: usize) -> Case {
-    let path = format!("{}/../../examples/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).expect("bundled example");
-    let mut no_maps = |_: &str, _: f64| -> Result<HeightMap> { unreachable!("no height map") };
-    let mut case = thirdbody::case_file::parse_case_file(&text, &mut no_maps)
-        .expect("valid example")
-        .case;
-    case.grid.cells = [n, n];
-    case
-}
+mod bundled;
+use bundled::bundled;
 
 fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()
