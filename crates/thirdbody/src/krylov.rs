@@ -149,16 +149,22 @@ impl Gmres {
                 self.rhs[j] *= c;
                 used = j + 1;
                 relative = self.rhs[j + 1].abs() / b_norm;
+                self.basis[j + 1].resize(n, 0.0);
                 if h_next > 0.0 {
                     let inv = 1.0 / h_next;
                     let work = &self.work;
-                    self.basis[j + 1].resize(n, 0.0);
                     self.basis[j + 1]
                         .iter_mut()
                         .zip(work)
                         .for_each(|(v, w)| *v = w * inv);
                 }
-                if relative <= tol || iterations >= max_iterations || h_next == 0.0 {
+                // A norm that is not finite (the system overflowed) ends the cycle: the
+                // caller sees the non-finite iterate.
+                if relative <= tol
+                    || iterations >= max_iterations
+                    || h_next == 0.0
+                    || !h_next.is_finite()
+                {
                     break;
                 }
             }

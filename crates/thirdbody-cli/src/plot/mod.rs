@@ -252,9 +252,9 @@ fn line_figure(
 /// Contour lines: `contours` evenly spaced levels dividing the field's range into
 /// `contours + 1` equal parts (0 for none), of which only those whose magnitude reaches
 /// [`LINE_FLOOR`] of the field's largest magnitude are drawn, and no piece of line that
-/// spans fewer than [`SPECK_SPAN`] samples along both axes (see [`drawn_levels`]).
+/// spans fewer than [`SPECK_SPAN`] samples along both axes (see `drawn_levels`).
 ///
-/// Depths shown (see [`shown_depths`]): from the first row down to the deepest row where
+/// Depths shown (see `shown_depths`): from the first row down to the deepest row where
 /// the field reaches a drawn level, or a depth of [`LINE_FLOOR`] of the peak without
 /// lines, and to any deeper maximum (of either sign, over the rows) that reaches
 /// [`FADED`] of the peak; then a margin of a tenth of that depth (at least two rows),

@@ -186,8 +186,8 @@ fn slope_at_zero(f: impl Fn(f64) -> [f64; 4], step: f64) -> [f64; 4] {
 
 impl CoatedStressKernels {
     /// The method [`StressKernels::fill`] uses on `lattice`: the coating's half-space
-    /// when the lattice's diagonal is below [`THICK_COATING`] h1, the thin film when
-    /// the coating is thinner than a cell and the remainder is below [`THIN_FILM`] at
+    /// when the lattice's diagonal is below `THICK_COATING` h1, the thin film when
+    /// the coating is thinner than a cell and the remainder is below `THIN_FILM` at
     /// the grid's wavenumbers, else the full expansion.
     pub fn method(&self, lattice: &OffsetLattice) -> StressMethod {
         let diagonal = diagonal(lattice);
