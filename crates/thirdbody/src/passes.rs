@@ -37,6 +37,23 @@ impl Passes {
         self.min_chunks
     }
 
+    /// The value for rayon's `with_min_len` on an iterator over single cells (or
+    /// contact-set entries): a chunk's worth per task.
+    pub(crate) fn min_cells(&self) -> usize {
+        if self.min_chunks == 1 {
+            CHUNK
+        } else {
+            usize::MAX
+        }
+    }
+
+    /// `x *= factor`, cell by cell.
+    pub(crate) fn scale(&self, x: &mut [f64], factor: f64) {
+        x.par_chunks_mut(CHUNK)
+            .with_min_len(self.min_chunks)
+            .for_each(|c| c.iter_mut().for_each(|v| *v *= factor));
+    }
+
     /// The value for rayon's `with_min_len` on an iterator over rows of `nx` cells:
     /// about a chunk's worth of rows per task.
     pub(crate) fn min_rows(&self, nx: usize) -> usize {

@@ -202,7 +202,7 @@ pub(crate) fn semismooth_newton(
         jac.solve_restricted(self_coefficient, &active, &full_in, &mut z1);
         let z1_sum: f64 = indices.iter().map(|&k| z1[k]).sum();
 
-        let min_gather = if min_len == 1 { CHUNK } else { usize::MAX };
+        let min_gather = passes.min_cells();
         let mut apply = |y: &[f64], out: &mut [f64]| {
             for (a, &k) in indices.iter().enumerate() {
                 full_in[k] = y[a];

@@ -45,9 +45,7 @@ pub(crate) fn polonsky_keer(
     let target_sum = load / cell_area;
     let scale = target_sum / passes.sum(n, |a, b| [p[a..b].iter().sum::<f64>()])[0];
     if scale.is_finite() {
-        p.par_chunks_mut(CHUNK)
-            .with_min_len(min_len)
-            .for_each(|c| c.iter_mut().for_each(|v| *v *= scale));
+        passes.scale(p, scale);
     }
     let mut u = vec![0.0; n];
     let mut g = vec![0.0; n];
@@ -225,9 +223,7 @@ pub(crate) fn polonsky_keer(
             1.0
         };
         if projected || overlap || since_refresh >= REFRESH_EVERY {
-            p.par_chunks_mut(CHUNK)
-                .with_min_len(min_len)
-                .for_each(|c| c.iter_mut().for_each(|v| *v *= scale));
+            passes.scale(p, scale);
             apply(op, p, &mut u);
             since_refresh = 0;
         } else {

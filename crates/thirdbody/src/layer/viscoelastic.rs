@@ -55,7 +55,8 @@ use rayon::prelude::*;
 use super::law::SIGMOID_MONOTONE_DELTA;
 use super::rheology::{CreepForm, Flow};
 use super::{ComplianceLaw, Integration, Layer, LayerLinearisation, LayerResponse};
-use crate::convolution::{Parallelism, PARALLEL_MIN_CELLS};
+use crate::convolution::Parallelism;
+use crate::passes::{Passes, CHUNK};
 
 /// `sum_k u_k v_k` with four partial sums, so that the additions of a long branch
 /// list overlap instead of waiting on each other.
@@ -112,9 +113,8 @@ pub struct ViscoelasticRows {
     upwind: f64,
     /// `sum_k (1 - b_k) C_k / C[0]`: the branches' own response over half a cell.
     branch_own: f64,
-    /// Fewest rows per rayon task (`usize::MAX`: the rows are swept on the calling
-    /// thread).
-    min_rows: usize,
+    /// How the row passes are split over threads.
+    passes: Passes,
 }
 
 impl ViscoelasticRows {
@@ -160,7 +160,7 @@ impl ViscoelasticRows {
         ViscoelasticRows {
             upwind,
             branch_own,
-            min_rows: 1,
+            passes: Passes::new(nx * ny, Parallelism::Rayon),
             glassy_scale,
             layer,
             nx,
@@ -173,11 +173,10 @@ impl ViscoelasticRows {
     }
 
     /// Splits the row passes over the rayon pool only when `parallelism` asks for it
-    /// and the grid has at least [`PARALLEL_MIN_CELLS`] cells (the default is to
-    /// split).
+    /// and the grid has at least `PARALLEL_MIN_CELLS` cells (the default asks for
+    /// it), by the rules of the solvers' passes.
     pub fn with_parallelism(mut self, parallelism: Parallelism) -> Self {
-        let parallel = parallelism == Parallelism::Rayon && self.nx * self.ny >= PARALLEL_MIN_CELLS;
-        self.min_rows = if parallel { 1 } else { usize::MAX };
+        self.passes = Passes::new(self.nx * self.ny, parallelism);
         self
     }
 
@@ -217,7 +216,7 @@ impl ViscoelasticRows {
         let rows = p
             .par_chunks_exact(self.nx)
             .zip(w3.par_chunks_exact_mut(self.nx))
-            .with_min_len(self.min_rows);
+            .with_min_len(self.passes.min_rows(self.nx));
         rows.for_each_init(
             || vec![0.0; self.branches.len()],
             |state, (prow, wrow)| {
@@ -278,14 +277,13 @@ impl ViscoelasticRows {
         let mut diagonal = vec![0.0; n];
         let mut flow_slope = vec![0.0; n];
         let mut forcing_slope = vec![0.0; n];
-        // Cell by cell (the law's evaluations are the cost): split over rows.
-        let rows = (self.nx * 16).max(1);
+        // Cell by cell (the law's evaluations are the cost), in chunks.
         diagonal
-            .par_chunks_mut(rows)
-            .zip(flow_slope.par_chunks_mut(rows))
-            .zip(forcing_slope.par_chunks_mut(rows))
-            .zip(p.par_chunks(rows))
-            .with_min_len(self.min_rows)
+            .par_chunks_mut(CHUNK)
+            .zip(flow_slope.par_chunks_mut(CHUNK))
+            .zip(forcing_slope.par_chunks_mut(CHUNK))
+            .zip(p.par_chunks(CHUNK))
+            .with_min_len(self.passes.min_len())
             .for_each(|(((diagonal, flow_slope), forcing_slope), p)| {
                 for (k, &pk) in p.iter().enumerate() {
                     let ((_, df), (_, dq)) = self.forcing_and_creep(pk);
@@ -297,7 +295,7 @@ impl ViscoelasticRows {
                 }
             });
         ViscoelasticJacobian {
-            min_rows: self.min_rows,
+            min_rows: self.passes.min_rows(self.nx),
             upwind: self.upwind,
             nx: self.nx,
             diagonal,
@@ -342,7 +340,8 @@ pub struct ViscoelasticJacobian {
     take_full_scaled: Vec<f64>,
     /// The upwind correction's weight: `J_i,i+1` has `- upwind dF/dp_{i+1}`.
     upwind: f64,
-    /// As [`ViscoelasticRows`]'s.
+    /// Fewest rows per rayon task (`usize::MAX`: one thread), from the layer's
+    /// passes.
     min_rows: usize,
 }
 
