@@ -56,6 +56,7 @@ pub mod report;
 pub mod shape;
 pub mod solution;
 pub mod stress;
+mod units;
 
 pub use case::{Body, Case, Elastic, GridSpec, Loading, Units};
 pub use contact::{solve, solve_observed, solve_problem, solve_with, Progress, SolverParams};

@@ -123,26 +123,35 @@ impl Summary {
     /// Whether every number is finite (a result with an overflowed friction sum or
     /// moment must not be reported).
     pub fn is_finite(&self) -> bool {
+        self.first_non_finite().is_none()
+    }
+
+    /// The name of the first number that is not finite, if any.
+    pub fn first_non_finite(&self) -> Option<&'static str> {
         [
-            self.normal_load,
-            self.penetration,
-            self.max_pressure,
-            self.max_pressure_x,
-            self.max_pressure_y,
-            self.contact_area,
-            self.contact_x_min,
-            self.contact_x_max,
-            self.contact_y_min,
-            self.contact_y_max,
-            self.moment,
-            self.friction_coefficient,
-            self.tangential_force,
-            self.dissipation_friction_coefficient,
-            self.residual,
-            self.cell_size,
+            ("normal_load", self.normal_load),
+            ("penetration", self.penetration),
+            ("max_pressure", self.max_pressure),
+            ("max_pressure_x", self.max_pressure_x),
+            ("max_pressure_y", self.max_pressure_y),
+            ("contact_area", self.contact_area),
+            ("contact_x_min", self.contact_x_min),
+            ("contact_x_max", self.contact_x_max),
+            ("contact_y_min", self.contact_y_min),
+            ("contact_y_max", self.contact_y_max),
+            ("moment", self.moment),
+            ("friction_coefficient", self.friction_coefficient),
+            ("tangential_force", self.tangential_force),
+            (
+                "dissipation_friction_coefficient",
+                self.dissipation_friction_coefficient,
+            ),
+            ("residual", self.residual),
+            ("cell_size", self.cell_size),
         ]
-        .iter()
-        .all(|v| v.is_finite())
+        .into_iter()
+        .find(|(_, v)| !v.is_finite())
+        .map(|(name, _)| name)
     }
 }
 

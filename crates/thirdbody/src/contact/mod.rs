@@ -26,6 +26,7 @@ use crate::kernel_cache::KernelCache;
 use crate::passes::{add_in_order, Passes};
 use crate::problem::ContactProblem;
 use crate::solution::{Method, Solution, SolveInfo};
+use crate::units::Scales;
 
 /// The smallest residual tolerance accepted: the relative complementarity residual
 /// of a converged solve sits at the rounding level of its sums, about 1e-15 to
@@ -335,7 +336,9 @@ pub fn solve_observed(
 /// Solves a case, taking plans and kernel spectra from the caller's `kernels` (and
 /// keeping new ones there), reporting progress to `observer`. The window is the
 /// case's fixed one, or chosen automatically and enlarged or refitted until the
-/// contact fits (design's section 2).
+/// contact fits (design's section 2). The solve runs in the paper's variables
+/// (R = E2 = T = 1, rounded to powers of two); the solution, the errors and the windows reported to
+/// `observer` are in the case's units.
 pub fn solve_with(
     case: &Case,
     params: &SolverParams,
@@ -344,6 +347,45 @@ pub fn solve_with(
 ) -> Result<Solution> {
     case.validate()?;
     params.validate()?;
+    let scales = Scales::of(case);
+    let scaled = scales.scaled_case(case)?;
+    let mut observe_in_case_units = |progress: Progress| {
+        observer(match progress {
+            Progress::Window { attempt, grid } => Progress::Window {
+                attempt,
+                grid: scales.unscaled_grid(&grid),
+            },
+            other => other,
+        })
+    };
+    let solution = solve_on_windows(&scaled, params, kernels, &mut observe_in_case_units)
+        .map_err(|e| scales.unscaled_error(e))?;
+    let solution = scales.unscaled_solution(solution, case.body, case.loading.normal_load);
+    if let Some(name) = solution.summary().first_non_finite() {
+        // Finite in the solver's units, so the case's units are what overflow: a
+        // moment of 1e98 N times 1e300 m.
+        return Err(Error::OutOfRange {
+            why: format!(
+                "the result {name} is beyond double precision's range in the case's units; \
+                 write the case in units nearer its own sizes (the paper's R = E2 = T = 1 \
+                 always fit)"
+            ),
+        });
+    }
+    if case.grid.half_width.is_some() {
+        window::check_resolution(&solution)?;
+    }
+    Ok(solution)
+}
+
+/// [`solve_with`] in the solver's units: the windows of a case, from the first (its
+/// fixed one or the estimate's) to the one that holds the contact.
+fn solve_on_windows(
+    case: &Case,
+    params: &SolverParams,
+    kernels: &mut KernelCache,
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+) -> Result<Solution> {
     let fixed = case.grid.half_width.is_some();
     let mut grid = window::initial_window(case)?;
     let mut warm: Option<(Grid, Vec<f64>)> = None;
@@ -372,7 +414,6 @@ pub fn solve_with(
                     half_width_y: wy,
                 });
             }
-            window::check_resolution(&solution)?;
             return Ok(solution);
         }
         match window::next_window(&grid, &solution.pressure, touches) {
