@@ -64,16 +64,41 @@ impl Scales {
         }
     }
 
+    /// The units of a stress computation on `body` under a pressure on `grid`: the
+    /// window's size, the substrate's modulus (no time), as powers of two. Love's
+    /// and the coated kernels raise lengths to the fourth power: in 1e-100 units
+    /// they would underflow.
+    pub fn for_stresses(body: &Body, grid: &Grid) -> Scales {
+        Scales {
+            length: power_of_two_near(grid.cell * grid.nx.max(grid.ny) as f64),
+            modulus: power_of_two_near(body.substrate().young),
+            time: 1.0,
+        }
+    }
+
+    /// A grid in these units.
+    pub fn grid(&self, g: &Grid) -> Grid {
+        Grid {
+            nx: g.nx,
+            ny: g.ny,
+            cell: self.length(g.cell),
+            x0: self.length(g.x0),
+            y0: self.length(g.y0),
+        }
+    }
+
     /// Whether the case's units are already the solver's (nothing to convert).
     pub fn are_unity(&self) -> bool {
         self.length == 1.0 && self.modulus == 1.0 && self.time == 1.0
     }
 
-    fn length(&self, x: f64) -> f64 {
+    /// A length in these units.
+    pub fn length(&self, x: f64) -> f64 {
         x / self.length
     }
 
-    fn pressure(&self, p: f64) -> f64 {
+    /// A pressure (or stress, or modulus) in these units.
+    pub fn pressure(&self, p: f64) -> f64 {
         p / self.modulus
     }
 
@@ -104,7 +129,8 @@ impl Scales {
         }
     }
 
-    fn body(&self, body: &Body) -> Body {
+    /// A body in these units.
+    pub fn body(&self, body: &Body) -> Body {
         match *body {
             Body::Homogeneous(m) => Body::Homogeneous(self.elastic(m)),
             Body::Coated {

@@ -12,6 +12,7 @@ use std::sync::OnceLock;
 
 use proptest::prelude::*;
 use thirdbody::layer::law::Table;
+use thirdbody::stress::StressRequest;
 use thirdbody::{
     solve, Body, Case, ComplianceLaw, Elastic, HeightMap, Integration, Layer, RelaxationBranch,
     RetardationBranch, Rheology, Slider, Solution, SolverParams,
@@ -472,12 +473,39 @@ fn compare(name: &str, a: &Solution, b: &Solution, f: &Factors) -> Result<(), St
     if let (Some(x), Some(y)) = (&a.compliance, &b.compliance) {
         worst.push(("compliance", field(x, y, f.compliance())));
     }
+    // Stresses on the default sections (XZ plane, surface, interface) at 6 depths.
+    let request = StressRequest {
+        depth_points: 6,
+        ..StressRequest::default()
+    };
+    let (ra, rb) = (
+        a.stress_results(&request).map_err(|e| e.to_string())?,
+        b.stress_results(&request).map_err(|e| e.to_string())?,
+    );
+    for ((_, fa), (_, fb)) in ra.sections.iter().zip(&rb.sections) {
+        worst.push(("stress depths", field(&fa.zs, &fb.zs, l)));
+        // Against the section's largest stress: a component that vanishes by
+        // symmetry (tau_xy on y = 0) is rounding noise of its own size.
+        let largest = fa
+            .components
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        for (ca, cb) in fa.components.iter().zip(&fb.components) {
+            let e = ca
+                .iter()
+                .zip(cb)
+                .map(|(&u, &v)| mismatch(u, v, p, largest))
+                .fold(0.0, f64::max);
+            worst.push(("stress", e));
+        }
+    }
     let bad: Vec<String> = worst
         .iter()
         .filter(|(_, e)| e.is_nan() || *e > 1e-9)
         .map(|(k, e)| format!("{k}: {e:.2e}"))
         .collect();
-    if bad.is_empty() && a.grid.nx == b.grid.nx {
+    if bad.is_empty() && ra.sections.len() == rb.sections.len() {
         Ok(())
     } else {
         Err(format!("{name} with {f:?}: {}", bad.join(", ")))

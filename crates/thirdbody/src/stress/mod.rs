@@ -46,6 +46,7 @@ use crate::case::Body;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::solution::Solution;
+use crate::units::Scales;
 
 /// Where stresses are wanted. x always runs over the grid's cell centres.
 #[derive(Debug, Clone, PartialEq)]
@@ -270,6 +271,54 @@ pub fn stresses_observed(
             }
         }
     }
+    // In the solver's units (crate::units): the kernels' powers of lengths stay in
+    // double precision's range whatever the case's units. Powers of two: exact both
+    // ways.
+    let scales = Scales::for_stresses(body, grid);
+    let lengths = |v: &[f64]| v.iter().map(|&z| scales.length(z)).collect::<Vec<f64>>();
+    let scaled_section = match section {
+        Section::XzPlane { y, depths } => Section::XzPlane {
+            y: scales.length(*y),
+            depths: lengths(depths),
+        },
+        Section::Plane { z } => Section::Plane {
+            z: scales.length(*z),
+        },
+        Section::Block { depths } => Section::Block {
+            depths: lengths(depths),
+        },
+        Section::Interface { side } => Section::Interface { side: *side },
+    };
+    let scaled_pressure: Vec<f64> = pressure.iter().map(|&p| scales.pressure(p)).collect();
+    let mut field = stresses_in_units(
+        &scales.grid(grid),
+        &scaled_pressure,
+        &scales.body(body),
+        &scaled_section,
+        depth_done,
+    )?;
+    for x in field
+        .xs
+        .iter_mut()
+        .chain(&mut field.ys)
+        .chain(&mut field.zs)
+    {
+        *x *= scales.length;
+    }
+    for s in field.components.iter_mut().flatten() {
+        *s *= scales.modulus;
+    }
+    Ok(field)
+}
+
+/// [`stresses_observed`] of a checked section, in the units its numbers are in.
+fn stresses_in_units(
+    grid: &Grid,
+    pressure: &[f64],
+    body: &Body,
+    section: &Section,
+    depth_done: &(dyn Fn() + Sync),
+) -> Result<StressField> {
     let side = match section {
         Section::Interface { side } => *side,
         _ => Side::Coating,
