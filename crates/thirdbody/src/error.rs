@@ -61,6 +61,13 @@ pub enum Error {
         /// What overflowed and which keys to check.
         why: String,
     },
+    /// The case is far outside the model (a contact much larger than a small
+    /// fraction of the slider's radius) and the solve failed there: an input error.
+    #[error("the case is outside the model: {why}")]
+    OutsideModel {
+        /// What is outside, by how much, and which keys set it.
+        why: String,
+    },
     /// The progress observer asked the solve to stop (a user's interrupt).
     #[error("the solve was interrupted")]
     Interrupted,
@@ -92,6 +99,7 @@ impl Error {
                 | Error::UnusedField { .. }
                 | Error::Parse(_)
                 | Error::OutOfRange { .. }
+                | Error::OutsideModel { .. }
         )
     }
 

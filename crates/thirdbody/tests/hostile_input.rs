@@ -246,3 +246,36 @@ fn a_coating_far_thicker_than_the_window_is_the_coating_half_space() {
         }
     }
 }
+
+/// Q' = 1e6 on the paper's Fig. 3 layer at 128² (the issue: "D = 3.2e4 R", solved
+/// without a word; later a stagnated Newton solve blamed on ill-conditioning): the
+/// contact would be ~90 R wide, and the failure says that, as an input error naming
+/// the load. (On 32² the same case converges and carries the model's warnings.) Hertz at the same load still solves, with the model's warnings.
+#[test]
+fn a_load_far_outside_the_model_is_named_when_the_solve_fails_there() {
+    let fig3 = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/paper_fig3.toml"
+    ))
+    .unwrap()
+    .replace("normal_load = 5e-6", "normal_load = 1e6");
+    assert!(fig3.contains("normal_load = 1e6"));
+    let case = thirdbody::case_file::parse_case_file(&fig3, &mut |_, _| unreachable!())
+        .unwrap()
+        .case;
+    match solve(&case, &SolverParams::default()) {
+        Err(e @ Error::OutsideModel { .. }) => {
+            assert!(e.is_input(), "{e}");
+            let text = e.to_string();
+            assert!(
+                text.contains("loading.normal_load") && text.contains("slider radii"),
+                "{text}"
+            );
+        }
+        other => panic!("{:?}", other.map(|s| s.summary())),
+    }
+    let mut hertz = hertz(32, None, None);
+    hertz.loading.normal_load = 1e6;
+    let s = solve(&hertz, &SolverParams::default()).unwrap();
+    assert!(!thirdbody::report::model_warnings(&hertz, &s).is_empty());
+}

@@ -25,6 +25,7 @@ use crate::grid::Grid;
 use crate::kernel_cache::KernelCache;
 use crate::passes::{add_in_order, Passes};
 use crate::problem::ContactProblem;
+use crate::report::MAX_CONTACT_FRACTION;
 use crate::solution::{Method, Solution, SolveInfo};
 use crate::units::Scales;
 
@@ -359,7 +360,7 @@ pub fn solve_with(
         })
     };
     let solution = solve_on_windows(&scaled, params, kernels, &mut observe_in_case_units)
-        .map_err(|e| scales.unscaled_error(e))?;
+        .map_err(|e| outside_the_model(&scaled, e).unwrap_or_else(|e| scales.unscaled_error(e)))?;
     let solution = scales.unscaled_solution(solution, case.body, case.loading.normal_load);
     if let Some(name) = solution.summary().first_non_finite() {
         // Finite in the solver's units, so the case's units are what overflow: a
@@ -376,6 +377,40 @@ pub fn solve_with(
         window::check_resolution(&solution)?;
     }
     Ok(solution)
+}
+
+/// A solve that failed to converge on a case whose estimated contact (Hertz or
+/// Winkler) is larger than the model allows (the report's [`MAX_CONTACT_FRACTION`] of R, which a
+/// solution beyond carries as a warning) fails because of that: say so, as an input
+/// error naming the keys, rather than blame the iterations. Other errors are
+/// returned as they are (`Err`).
+fn outside_the_model(case: &Case, e: Error) -> std::result::Result<Error, Error> {
+    let Error::NoConvergence {
+        iterations,
+        residual,
+        ..
+    } = e
+    else {
+        return Err(e);
+    };
+    let r = case.slider.equivalent_radius();
+    let estimate = window::ContactEstimate::of(case);
+    // The load's own contact (Hertz or Winkler), not the creep length, which a
+    // folding layer can make long inside the model.
+    let extent = estimate.symmetric_radius;
+    if extent.is_nan() || extent <= MAX_CONTACT_FRACTION * r {
+        return Err(e);
+    }
+    Ok(Error::OutsideModel {
+        why: format!(
+            "its contact is estimated to reach {:.3e} slider radii (the half-space and \
+             paraboloid model holds while it stays below {MAX_CONTACT_FRACTION} R), and the \
+             solver did not converge there (residual {residual:.3e} after {iterations} \
+             iterations); lower loading.normal_load or layer.compliance, or raise the \
+             moduli or the slider's radius",
+            extent / r
+        ),
+    })
 }
 
 /// [`solve_with`] in the solver's units: the windows of a case, from the first (its
