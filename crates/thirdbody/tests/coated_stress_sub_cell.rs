@@ -142,7 +142,10 @@ fn sub_cell_meets_the_thin_film() {
 
 /// Offsets that are not whole cells (an XZ section between rows), and a lattice
 /// that does not contain the loaded cell: the sub-cell split's two boxes place them
-/// as the full expansion does (h1 = cell / 10, E1/E2 = 3).
+/// as the full expansion does (h1 = cell / 10, E1/E2 = 3). On a row edge (y offsets
+/// of half cells) the alias series along y no longer alternates and the two
+/// methods differ most. Measured, relative to the kernel's peak: 2.2e-6 (half-cell
+/// rows, surface), 1.8e-6 (same, interface), at most 8.8e-7 elsewhere.
 #[test]
 fn sub_cell_places_shifted_lattices() {
     let h1 = 0.1;
@@ -163,7 +166,9 @@ fn sub_cell_places_shifted_lattices() {
             };
             let full = table(&k, z, &l, StressMethod::Full);
             let sub = table(&k, z, &l, StressMethod::SubCell);
-            let e = difference(&full, &sub) / peak(&full);
+            // Relative to the kernel's peak (on the loaded cell).
+            let scale = peak(&table(&k, z, &lattice(3, -1.0), StressMethod::Full));
+            let e = difference(&full, &sub) / scale;
             println!("first ({x_first}, {y_first}) z {z} {side:?}: {e:.2e}");
             assert!(e < 2e-5, "first ({x_first}, {y_first}), z {z}: {e:.2e}");
         }
