@@ -35,6 +35,15 @@
 //!    thinner than a cell (the aliases resolve the sub-cell structure);
 //!    (b) its long waves `chi T` in free space, by Hankel transforms
 //!    ([`super::coated_long_wave`]).
+//!    For a coating thinner than a cell (membrane length below the cell,
+//!    [`StressMethod::SubCell`]) the split is moved to `k1 = 4 / h`: the short waves'
+//!    kernel then lies within five cells, so a 16 x 16 box holds it, and its alias
+//!    sum is capped at 128 orders per axis, the last half tapered by a smooth step
+//!    (on whole-cell offsets the series alternates in sign with a smooth amplitude,
+//!    which a smooth taper sums to far below rounding); the long waves, band-limited
+//!    to `32 / h`, are summed on a box of twice the offsets' span with six aliases
+//!    (their images are a span away, where the remainder's algebraic tail is below
+//!    rounding of the peak). The cost no longer grows with `h / h1`.
 //!
 //! Why the split (issue 9 part 1). A lattice sum is the kernel plus its periodic
 //! images. The remainder's wave-frame functions are analytic in |k|, so in (kx, ky)
