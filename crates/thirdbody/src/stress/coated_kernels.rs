@@ -207,8 +207,9 @@ impl CoatedStressKernels {
     /// The method [`StressKernels::fill`] uses on `lattice`: the coating's half-space
     /// when the lattice's diagonal is below `THICK_COATING` h1, the thin film when
     /// the coating is thinner than a cell and the remainder is below `THIN_FILM` at
-    /// the grid's wavenumbers, the sub-cell split where the membrane length is below
-    /// a cell, else the full expansion.
+    /// the grid's wavenumbers, the sub-cell split for other coatings thinner than a
+    /// cell whose membrane length is below the cell or a tenth of the offsets' span,
+    /// else the full expansion.
     pub fn method(&self, lattice: &OffsetLattice) -> StressMethod {
         let diagonal = diagonal(lattice);
         if diagonal < THICK_COATING * self.thickness {
@@ -217,7 +218,12 @@ impl CoatedStressKernels {
             && self.remainder_at_grid_scale(lattice.cell) < THIN_FILM
         {
             StressMethod::ThinFilm
-        } else if self.membrane_length() < lattice.cell {
+        } else if self.thickness < lattice.cell
+            && self.membrane_length()
+                < lattice
+                    .cell
+                    .max(0.1 * span_in_cells(lattice) as f64 * lattice.cell)
+        {
             StressMethod::SubCell
         } else {
             StressMethod::Full
@@ -226,8 +232,9 @@ impl CoatedStressKernels {
 
     /// The length `2 max(1, E1 / E2) h1` over which the remainder's kernel reaches
     /// before its algebraic tail (a stiff coating spreads a load like a membrane).
-    /// [`StressMethod::SubCell`] needs it below the cell: its long waves are summed
-    /// on a box only twice the offsets' span wide.
+    /// [`StressMethod::SubCell`] needs it below the cell or a tenth of the offsets'
+    /// span: its long waves are summed on a box only twice the span wide (measured
+    /// against the full expansion: 5e-6 of the peak at a tenth of the span).
     pub fn membrane_length(&self) -> f64 {
         2.0 * (self.coating.young / self.substrate.young).max(1.0) * self.thickness
     }
