@@ -53,6 +53,12 @@ pub enum StressMethod {
     /// Love's kernels, two carriers and the remainder (lattice sum and Hankel
     /// transforms): exact, at a cost that grows like `(cell / h1)^2` for thin coatings.
     Full,
+    /// A coating thinner than the cell: as `Full`, but the remainder is split at
+    /// `k1 = 4 / cell`: its short waves (a kernel within five cells of the loaded
+    /// one) on a small periodic box whose alias sum is capped and smoothly tapered,
+    /// its long waves (band-limited to `32 / cell`) on a box of twice the offsets'
+    /// span with six aliases. The cost does not grow with `cell / h1`.
+    SubCell,
     /// A coating much thinner than the cell: Love's kernels and the two carriers (the
     /// long-wave limit and its O(k h1) slope), without the O((k l)^2) remainder.
     ThinFilm,

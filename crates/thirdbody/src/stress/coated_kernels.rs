@@ -35,6 +35,15 @@
 //!    thinner than a cell (the aliases resolve the sub-cell structure);
 //!    (b) its long waves `chi T` in free space, by Hankel transforms
 //!    ([`super::coated_long_wave`]).
+//!    For a coating thinner than a cell (membrane length below the cell,
+//!    [`StressMethod::SubCell`]) the split is moved to `k1 = 4 / h`: the short waves'
+//!    kernel then lies within five cells, so a 16 x 16 box holds it, and its alias
+//!    sum is capped at 128 orders per axis, the last half tapered by a smooth step
+//!    (on whole-cell offsets the series alternates in sign with a smooth amplitude,
+//!    which a smooth taper sums to far below rounding); the long waves, band-limited
+//!    to `32 / h`, are summed on a box of twice the offsets' span with six aliases
+//!    (their images are a span away, where the remainder's algebraic tail is below
+//!    rounding of the peak). The cost no longer grows with `h / h1`.
 //!
 //! Why the split (issue 9 part 1). A lattice sum is the kernel plus its periodic
 //! images. The remainder's wave-frame functions are analytic in |k|, so in (kx, ky)
@@ -67,7 +76,7 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
 
-use super::coated_long_wave::{long_wave_kernels, short_wave_share, BAND_EDGE};
+use super::coated_long_wave::{long_wave_kernels, long_wave_share, short_wave_share, BAND_EDGE};
 use super::kernels::{
     HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
 };
@@ -88,6 +97,16 @@ const REACH: f64 = 20.0;
 /// sum's (whose cost it keeps), and the long waves are band-limited to `8 k1 = 32 /
 /// span`.
 const SPLIT_SPANS: f64 = 5.0;
+/// The split wavenumber of [`StressMethod::SubCell`], times the cell: the short
+/// waves' kernel then reaches `REACH / SUB_CELL_SPLIT = 5` cells and the long waves
+/// are band-limited to `BAND_EDGE * SUB_CELL_SPLIT = 32` over the cell.
+const SUB_CELL_SPLIT: f64 = 4.0;
+/// Alias orders of the [`StressMethod::SubCell`] short waves, per axis: beyond half
+/// of them the alias terms are tapered smoothly to zero. For offsets on cell
+/// centres the alias series along an axis alternates in sign (`sinc` at `theta + 2
+/// pi m`) with a smooth amplitude, and a smooth taper over many orders sums such a
+/// series to far below rounding.
+const SUB_CELL_ALIASES: i64 = 128;
 /// Chebyshev panel degree of the tabulated remainder.
 const PANEL_DEGREE: usize = 20;
 /// The coating's half-space (plus a constant) is used where the lattice's diagonal
@@ -188,7 +207,9 @@ impl CoatedStressKernels {
     /// The method [`StressKernels::fill`] uses on `lattice`: the coating's half-space
     /// when the lattice's diagonal is below `THICK_COATING` h1, the thin film when
     /// the coating is thinner than a cell and the remainder is below `THIN_FILM` at
-    /// the grid's wavenumbers, else the full expansion.
+    /// the grid's wavenumbers, the sub-cell split for other coatings thinner than a
+    /// cell whose membrane length is below the cell or a tenth of the offsets' span,
+    /// else the full expansion.
     pub fn method(&self, lattice: &OffsetLattice) -> StressMethod {
         let diagonal = diagonal(lattice);
         if diagonal < THICK_COATING * self.thickness {
@@ -197,9 +218,25 @@ impl CoatedStressKernels {
             && self.remainder_at_grid_scale(lattice.cell) < THIN_FILM
         {
             StressMethod::ThinFilm
+        } else if self.thickness < lattice.cell
+            && self.membrane_length()
+                < lattice
+                    .cell
+                    .max(0.1 * span_in_cells(lattice) as f64 * lattice.cell)
+        {
+            StressMethod::SubCell
         } else {
             StressMethod::Full
         }
+    }
+
+    /// The length `2 max(1, E1 / E2) h1` over which the remainder's kernel reaches
+    /// before its algebraic tail (a stiff coating spreads a load like a membrane).
+    /// [`StressMethod::SubCell`] needs it below the cell or a tenth of the offsets'
+    /// span: its long waves are summed on a box only twice the span wide (measured
+    /// against the full expansion: 5e-6 of the peak at a tenth of the span).
+    pub fn membrane_length(&self) -> f64 {
+        2.0 * (self.coating.young / self.substrate.young).max(1.0) * self.thickness
     }
 
     /// [`StressKernels::fill`] with a given method (the others are kept for tests
@@ -265,12 +302,80 @@ impl CoatedStressKernels {
         // 3. The remainder, O(k^2) at k = 0: its short waves by a periodic lattice
         // sum, its long waves by Hankel transforms.
         let remainder = |k: f64| self.remainder(side, z, carrier, r1, k);
+        if method == StressMethod::SubCell {
+            self.add_sub_cell_remainder(lattice, lambda, &remainder, table);
+            return;
+        }
         let k1 = split_wavenumber(lattice);
-        let short = remainder_on_lattice(lattice, lambda, self.thickness, k1, &remainder);
+        let short = remainder_on_lattice(
+            lattice,
+            lambda,
+            self.thickness,
+            k1,
+            &remainder,
+            Pass::Short { taper: false },
+        );
         let long = long_wave_kernels(lattice, k1, &remainder);
         for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
             for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
                 *v += a + b;
+            }
+        }
+    }
+
+    /// The remainder of [`StressMethod::SubCell`], added to `table`: split at `k1 =
+    /// SUB_CELL_SPLIT / cell`, its short waves on the offsets within their reach
+    /// (`REACH / SUB_CELL_SPLIT` cells) of the loaded cell, on a small box with a
+    /// capped and tapered alias sum, and its long waves on every offset by a
+    /// lattice sum with a few aliases.
+    fn add_sub_cell_remainder(
+        &self,
+        lattice: &OffsetLattice,
+        lambda: f64,
+        remainder: &(dyn Fn(f64) -> [f64; 4] + Sync),
+        table: &mut InfluenceTable,
+    ) {
+        let h = lattice.cell;
+        let k1 = SUB_CELL_SPLIT / h;
+        let long = remainder_on_lattice(lattice, lambda, self.thickness, k1, remainder, Pass::Long);
+        for (t, l) in table.values.iter_mut().zip(long) {
+            for (v, a) in t.iter_mut().zip(l) {
+                *v += a;
+            }
+        }
+        // The offsets within the short waves' reach, as a sub-lattice.
+        let reach = (REACH / SUB_CELL_SPLIT).ceil() + 1.0;
+        let clip = |first: f64, count: usize| {
+            let lo = ((-reach - first).ceil()).max(0.0) as usize;
+            let hi = ((reach - first).floor()).min(count as f64 - 1.0);
+            (hi >= lo as f64).then(|| (lo, hi as usize - lo + 1))
+        };
+        let (Some((x0, cols)), Some((y0, rows))) = (
+            clip(lattice.x_first, lattice.cols),
+            clip(lattice.y_first, lattice.rows),
+        ) else {
+            return;
+        };
+        let near = OffsetLattice {
+            cell: h,
+            x_first: lattice.x_first + x0 as f64,
+            cols,
+            y_first: lattice.y_first + y0 as f64,
+            rows,
+        };
+        let short = remainder_on_lattice(
+            &near,
+            lambda,
+            self.thickness,
+            k1,
+            remainder,
+            Pass::Short { taper: true },
+        );
+        for (t, s) in table.values.iter_mut().zip(short) {
+            for r in 0..rows {
+                for c in 0..cols {
+                    t[(y0 + r) * lattice.cols + x0 + c] += s[r * cols + c];
+                }
             }
         }
     }
@@ -478,7 +583,32 @@ fn split_wavenumber(lattice: &OffsetLattice) -> f64 {
     (REACH / (SPLIT_SPANS * span_in_cells(lattice) as f64 * h)).min(1.0 / h)
 }
 
-/// The short-wave part `(1 - chi(k)) T(k)` of the remainder kernel on `lattice`,
+/// Which part of the remainder a lattice sum takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Pass {
+    /// The short waves `(1 - chi) T`, on a box `REACH / k1` wider than the offsets,
+    /// aliases until `e^{-k lambda}` is negligible: at most 64 per axis (`Full`),
+    /// or at most `SUB_CELL_ALIASES` with the last half tapered (`SubCell`).
+    Short { taper: bool },
+    /// The long waves `chi T`, band-limited to `BAND_EDGE k1`, on a box of twice the
+    /// offsets' span (their kernel's images are then at least a span away, where
+    /// the remainder's algebraic tail is below rounding of the peak).
+    Long,
+}
+
+/// A smooth step from 1 (t <= 0) to 0 (t >= 1), infinitely differentiable.
+fn taper(t: f64) -> f64 {
+    let bump = |u: f64| if u > 0.0 { (-1.0 / u).exp() } else { 0.0 };
+    let (a, b) = (bump(1.0 - t), bump(t));
+    if a + b == 0.0 {
+        0.0
+    } else {
+        a / (a + b)
+    }
+}
+
+/// A part (`pass`) of the remainder kernel on `lattice`: the short waves `(1 -
+/// chi(k)) T(k)` or the long waves `chi(k) T(k)`,
 /// `[sigma_x, ..., tau_yz]` per offset, from its wave-frame transfer `radial(k) =
 /// [xixi, etaeta, zz, xiz / i]` (k in 1/length), which decays at least like
 /// `e^{-k lambda}`. Its kernel falls off within `REACH / k1`, so a periodic box that
@@ -489,18 +619,44 @@ fn remainder_on_lattice(
     thickness: f64,
     k1: f64,
     radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
+    pass: Pass,
 ) -> [Vec<f64>; COMPONENTS] {
     let h = lattice.cell;
-    // Aliases: |k| up to where e^{-k lambda} is negligible (in cells: k h = theta).
-    let theta_max = ALIAS_DECAY * h / lambda.max(1e-300);
+    let k1h = k1 * h;
+    // Aliases: |k| up to where e^{-k lambda} is negligible (in cells: k h = theta),
+    // or up to the long waves' band edge.
+    let mut theta_max = ALIAS_DECAY * h / lambda.max(1e-300);
+    if pass == Pass::Long {
+        theta_max = theta_max.min(BAND_EDGE * k1h);
+    }
     // Alias m covers theta in [2 pi m - pi, 2 pi m + pi].
-    let aliases = (((theta_max + PI) / (2.0 * PI)).floor() as i64).clamp(0, 64);
+    let needed = ((theta_max + PI) / (2.0 * PI)).floor().min(1e9) as i64;
+    let (aliases, tapered) = match pass {
+        Pass::Short { taper: true } if needed > SUB_CELL_ALIASES => (SUB_CELL_ALIASES, true),
+        Pass::Short { taper: true } => (needed.max(0), false),
+        Pass::Short { taper: false } => (needed.clamp(0, 64), false),
+        Pass::Long => (needed.max(0), false),
+    };
     // A square box, so that the images are equally far in both directions.
     let span = span_in_cells(lattice);
-    let reach = (REACH / (k1 * h)).ceil() as usize;
-    let len = fft_friendly((span + reach).max(2 * span + 2)).max(16);
+    let len = match pass {
+        Pass::Short { .. } => {
+            let reach = (REACH / k1h).ceil() as usize;
+            fft_friendly((span + reach).max(2 * span + 2)).max(16)
+        }
+        Pass::Long => fft_friendly(2 * span + 2).max(16),
+    };
     let ax = Axis::new(lattice.x_first, aliases, len);
     let ay = Axis::new(lattice.y_first, aliases, len);
+    // The taper's weight of alias order m (1 up to half the orders kept).
+    let taper_weight = |m: i64| {
+        if tapered {
+            let half = aliases as f64 / 2.0;
+            taper((m.abs() as f64 - half) / half)
+        } else {
+            1.0
+        }
+    };
     // Theta = k h of the table: up to the largest alias, capped by the decay (the
     // sum below reads no theta beyond `theta_max`). Capping at `theta_max` rather
     // than a period beyond it keeps the table at most 64 panels of the transfer's
@@ -508,16 +664,13 @@ fn remainder_on_lattice(
     let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max);
     // The longest length in the transfer's exponentials is about z + 2 h1 <= 2 lambda + 2 h1.
     // Below k1 / 100 the high-pass factor is below 1e-16.
-    let k1h = k1 * h;
     let radial_table =
         RadialTable::new(theta_top, h, 2.0 * (lambda + thickness), 0.01 * k1h, radial);
-    // `1 - chi(k)`, which is 1 to double precision beyond BAND_EDGE k1.
-    let high_pass = |theta: f64| {
-        if theta > BAND_EDGE * k1h {
-            1.0
-        } else {
-            short_wave_share(theta, k1h)
-        }
+    // `1 - chi(k)`, which is 1 to double precision beyond BAND_EDGE k1, or `chi(k)`.
+    let high_pass = |theta: f64| match pass {
+        Pass::Short { .. } if theta > BAND_EDGE * k1h => 1.0,
+        Pass::Short { .. } => short_wave_share(theta, k1h),
+        Pass::Long => long_wave_share(theta, k1h),
     };
 
     // Per axis: for each base index and alias order, theta = k h, sinc and the phase
@@ -535,7 +688,10 @@ fn remainder_on_lattice(
                 for m in -a.aliases..=a.aliases {
                     let t = a.base(j) + 2.0 * PI * m as f64;
                     theta.push(t);
-                    weight.push(Complex::from_polar(sinc(t / 2.0), t * a.frac));
+                    weight.push(Complex::from_polar(
+                        sinc(t / 2.0) * taper_weight(m),
+                        t * a.frac,
+                    ));
                 }
                 AxisTerms { theta, weight }
             })
