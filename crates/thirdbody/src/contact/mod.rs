@@ -181,6 +181,18 @@ pub(crate) fn relative_complementarity_residual(
     (num / den).sqrt()
 }
 
+/// The error of a case whose discrete model has no unique solution (a folding layer,
+/// `diagnosis` says why and what to change): an input error, since no solver
+/// setting helps.
+pub(crate) fn no_unique_solution(iteration: usize, residual: f64, diagnosis: String) -> Error {
+    Error::OutsideModel {
+        why: format!(
+            "{diagnosis} (the solver stopped at residual {residual:.3e} after {iteration} \
+             iterations)"
+        ),
+    }
+}
+
 /// Records the residual history, reports each iteration to the observer and decides
 /// when to stop: the one place every iterative solver stops the same way.
 pub(crate) struct Monitor<'a> {
@@ -241,7 +253,10 @@ impl<'a> Monitor<'a> {
         if !self.stagnated() {
             return None;
         }
-        let hint = self.stagnation_hint(diagnosis());
+        if let Some(d) = diagnosis() {
+            return Some(no_unique_solution(iteration, residual, d));
+        }
+        let hint = self.stagnation_hint();
         Some(Error::NoConvergence {
             iterations: iteration,
             residual,
@@ -266,23 +281,17 @@ impl<'a> Monitor<'a> {
         !progressing
     }
 
-    /// The message of a stagnated solve, with the model's own diagnosis if any.
-    pub(crate) fn stagnation_hint(&self, diagnosis: Option<String>) -> String {
+    /// The message of a stagnated solve that the model cannot explain.
+    pub(crate) fn stagnation_hint(&self) -> String {
         let (n, window) = (self.history.len(), self.stagnation_window);
         let from = self.history[n - 1 - window];
         let to = self.last_residual();
-        let what = format!(
+        format!(
             "the residual stopped falling (from {from:.3e} to {to:.3e} over the last \
-             {window} iterations), so more iterations would not help"
-        );
-        match diagnosis {
-            Some(d) => format!("{what}; {d}"),
-            None => format!(
-                "{what}: the discrete problem is too ill-conditioned at these parameters \
-                 (e.g. moduli or compliances many orders of magnitude apart); check the \
-                 case's scales or use a coarser tolerance"
-            ),
-        }
+             {window} iterations), so more iterations would not help: the discrete problem \
+             is too ill-conditioned at these parameters (e.g. moduli or compliances many \
+             orders of magnitude apart); check the case's scales or use a coarser tolerance"
+        )
     }
 
     /// The last residual recorded (infinite before any).

@@ -15,7 +15,7 @@ use std::ops::ControlFlow;
 
 use rayon::prelude::*;
 
-use super::{relative_complementarity_residual, Monitor, SolveReport};
+use super::{no_unique_solution, relative_complementarity_residual, Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
 use crate::krylov::Gmres;
@@ -150,8 +150,8 @@ pub(crate) fn semismooth_newton(
         // A folding row relation is a property of the discrete model, not of the
         // iteration: stop early and say so rather than iterate to the limit.
         if iteration % FOLD_CHECK_EVERY == 0 && residual > 1e-3 {
-            if let Some(hint) = layer.stall_diagnosis(p) {
-                return Err(monitor.failure(iteration, residual, hint));
+            if let Some(diagnosis) = layer.stall_diagnosis(p) {
+                return Err(no_unique_solution(iteration, residual, diagnosis));
             }
         }
 
@@ -278,8 +278,13 @@ pub(crate) fn semismooth_newton(
             alpha *= 0.5;
         }
     }
-    let hint = layer.stall_diagnosis(p).unwrap_or_else(|| {
-        "raise solver.max_iterations or solver.tolerance, or refine the grid".into()
-    });
-    Err(monitor.failure(params.max_iterations, last_residual, hint))
+    if let Some(diagnosis) = layer.stall_diagnosis(p) {
+        return Err(no_unique_solution(
+            params.max_iterations,
+            last_residual,
+            diagnosis,
+        ));
+    }
+    let hint = "raise solver.max_iterations or solver.tolerance, or refine the grid";
+    Err(monitor.failure(params.max_iterations, last_residual, hint.into()))
 }
