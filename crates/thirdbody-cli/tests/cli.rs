@@ -380,15 +380,15 @@ fn plots_are_written() {
 }
 
 #[test]
-fn solver_failures_exit_with_1_and_leave_nothing() {
+fn a_window_too_small_exits_with_2_a_solver_failure_with_1_and_neither_writes() {
     // A fixed window of half width 0.005 cannot hold the Hertz contact of radius
-    // 0.015: the contact reaches the edge.
+    // 0.015: the contact reaches the edge, which the case's window causes (exit 2).
     let case = SPHERE.replace(
         "cells = [32, 32]",
         "cells = [32, 32]\nhalf_width = [0.005, 0.005]",
     );
     let run = solve(&case, &[], &[]);
-    assert_eq!(run.code(), Some(1), "stderr: {}", run.stderr());
+    assert_eq!(run.code(), Some(2), "stderr: {}", run.stderr());
     assert_eq!(run.stderr().lines().count(), 1, "{}", run.stderr());
     assert!(
         run.stderr().contains("edge of the window"),

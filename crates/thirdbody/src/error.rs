@@ -71,10 +71,12 @@ pub enum Error {
     /// The progress observer asked the solve to stop (a user's interrupt).
     #[error("the solve was interrupted")]
     Interrupted,
-    /// The contact reached the edge of the computational window.
+    /// The contact reached the edge of the computational window: an input error (the
+    /// window is the case's, or the automatic window ran out of `solver.max_windows`).
     #[error(
         "the contact reaches the edge of the window (half widths {half_width_x:.4e} x \
-         {half_width_y:.4e}); enlarge grid.half_width or omit it for an automatic window"
+         {half_width_y:.4e}); enlarge grid.half_width, or omit it for an automatic window \
+         (enlarged up to solver.max_windows times)"
     )]
     ContactAtWindowEdge {
         /// Window half width along x.
@@ -100,6 +102,7 @@ impl Error {
                 | Error::Parse(_)
                 | Error::OutOfRange { .. }
                 | Error::OutsideModel { .. }
+                | Error::ContactAtWindowEdge { .. }
         )
     }
 
