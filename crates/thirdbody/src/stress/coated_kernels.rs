@@ -703,8 +703,10 @@ fn remainder_on_lattice(
     // are not whole cells along an axis (an XZ section on a row edge) put some of
     // them on the loaded cell's edge, where the kernel varies on the scale lambda:
     // below the surface that axis keeps up to `SUB_CELL_EDGE_ALIASES`. (At the
-    // surface the edge values with 128 and 2048 tapered orders agree to 1e-11 of
-    // the peak, h1 = cell / 100 ... cell / 1e4, E1/E2 = 0.01, 3, 300.)
+    // surface the edge values with 128 and 2048 tapered orders agreed to 1e-11 of
+    // the peak, h1 = cell / 100 ... cell / 1e4, E1/E2 = 0.01, 3, 300, measured with
+    // the slope carrier at lambda; with 128 against the full expansion at h1 =
+    // cell / 60: `tests/coated_stress_sub_cell.rs`.)
     let orders = |first: f64| -> (i64, bool) {
         let edge = matches!(pass, Pass::Short { edge: true, .. });
         let cap = if first == first.floor() || !edge {
