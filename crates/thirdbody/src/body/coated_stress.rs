@@ -56,8 +56,9 @@ pub enum StressMethod {
     /// A coating thinner than the cell: as `Full`, but the remainder is split at
     /// `k1 = 4 / cell`: its short waves (a kernel within five cells of the loaded
     /// one) on a small periodic box whose alias sum is capped and smoothly tapered,
-    /// its long waves (band-limited to `32 / cell`) on a box of twice the offsets'
-    /// span with six aliases. The cost does not grow with `cell / h1`.
+    /// its long waves in bands of wavenumbers a factor 4 apart, each on a box wider
+    /// than its kernel's reach, and below `~4 / span` by Hankel transforms. The
+    /// cost grows neither with `cell / h1` nor with E1/E2.
     SubCell,
     /// A coating much thinner than the cell: Love's kernels and the two carriers (the
     /// long-wave limit and its O(k h1) slope), without the O((k l)^2) remainder.
