@@ -43,6 +43,17 @@ fn power_of_two_near(x: f64) -> f64 {
     f64::from_bits(((exponent + 1023) as u64) << 52)
 }
 
+/// `g` with each of its lengths mapped by `f`.
+fn grid_lengths(g: &Grid, f: impl Fn(f64) -> f64) -> Grid {
+    Grid {
+        nx: g.nx,
+        ny: g.ny,
+        cell: f(g.cell),
+        x0: f(g.x0),
+        y0: f(g.y0),
+    }
+}
+
 impl Scales {
     /// The scales of `case` (module docs).
     pub fn of(case: &Case) -> Scales {
@@ -78,13 +89,7 @@ impl Scales {
 
     /// A grid in these units.
     pub fn grid(&self, g: &Grid) -> Grid {
-        Grid {
-            nx: g.nx,
-            ny: g.ny,
-            cell: self.length(g.cell),
-            x0: self.length(g.x0),
-            y0: self.length(g.y0),
-        }
+        grid_lengths(g, |x| self.length(x))
     }
 
     /// Whether the case's units are already the solver's (nothing to convert).
@@ -303,13 +308,7 @@ impl Scales {
 
     /// A grid of the solver back in the case's units.
     pub fn unscaled_grid(&self, g: &Grid) -> Grid {
-        Grid {
-            nx: g.nx,
-            ny: g.ny,
-            cell: g.cell * self.length,
-            x0: g.x0 * self.length,
-            y0: g.y0 * self.length,
-        }
+        grid_lengths(g, |x| x * self.length)
     }
 
     /// A solution of the scaled case back in the case's units; `body` is the case's.

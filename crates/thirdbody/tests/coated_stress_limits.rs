@@ -5,49 +5,23 @@
 //! limits (Love's kernels of the substrate as h1 -> 0, of the coating as h1 -> inf).
 
 use thirdbody::body::coated_stress::StressMethod;
-use thirdbody::case::Elastic;
 use thirdbody::stress::{
     CoatedStressKernels, HomogeneousStressKernels, InfluenceTable, OffsetLattice, Side,
     StressKernels,
 };
 
-fn elastic(young: f64, poisson: f64) -> Elastic {
-    Elastic { young, poisson }
-}
+mod coated_tables;
+
+use coated_tables::{elastic, max_difference, peak, square_lattice, table};
 
 /// A centred lattice of `n x n` offsets, cell 1.
 fn lattice(n: usize) -> OffsetLattice {
-    let first = -(((n - 1) / 2) as f64);
-    OffsetLattice {
-        cell: 1.0,
-        x_first: first,
-        cols: n,
-        y_first: first,
-        rows: n,
-    }
-}
-
-fn table(k: &CoatedStressKernels, z: f64, l: &OffsetLattice, m: StressMethod) -> InfluenceTable {
-    let mut t = InfluenceTable::default();
-    k.fill_with(z, l, &mut t, m);
-    t
-}
-
-fn peak(t: &InfluenceTable) -> f64 {
-    t.values
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, v| m.max(v.abs()))
+    square_lattice(n, -(((n - 1) / 2) as f64))
 }
 
 /// Largest difference over all components and offsets, relative to `scale`.
 fn difference(a: &InfluenceTable, b: &InfluenceTable, scale: f64) -> f64 {
-    a.values
-        .iter()
-        .flatten()
-        .zip(b.values.iter().flatten())
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
+    max_difference(a, b) / scale
 }
 
 #[test]

@@ -6,43 +6,23 @@
 use std::time::Instant;
 
 use thirdbody::body::coated_stress::StressMethod;
-use thirdbody::case::Elastic;
-use thirdbody::stress::{CoatedStressKernels, InfluenceTable, OffsetLattice, Side};
+use thirdbody::stress::{CoatedStressKernels, OffsetLattice, Side};
 
-fn elastic(young: f64, poisson: f64) -> Elastic {
-    Elastic { young, poisson }
-}
+mod coated_tables;
 
-/// A lattice of `n x n` offsets starting at `first` (cells), cell 1.
-fn lattice(n: usize, first: f64) -> OffsetLattice {
-    OffsetLattice {
-        cell: 1.0,
-        x_first: first,
-        cols: n,
-        y_first: first,
-        rows: n,
+use coated_tables::{
+    elastic, max_difference as difference, peak, square_lattice as lattice, table,
+};
+
+/// A coating `h1` thick of E1/E2 = `ratio` (nu 0.3) on a substrate of nu 0.25, the
+/// interface read on `side`.
+fn kernels(ratio: f64, h1: f64, side: Side) -> CoatedStressKernels {
+    CoatedStressKernels {
+        coating: elastic(ratio, 0.3),
+        thickness: h1,
+        substrate: elastic(1.0, 0.25),
+        interface_side: side,
     }
-}
-
-fn table(k: &CoatedStressKernels, z: f64, l: &OffsetLattice, m: StressMethod) -> InfluenceTable {
-    let mut t = InfluenceTable::default();
-    k.fill_with(z, l, &mut t, m);
-    t
-}
-
-fn peak(t: &InfluenceTable) -> f64 {
-    t.values
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-fn difference(a: &InfluenceTable, b: &InfluenceTable) -> f64 {
-    a.values
-        .iter()
-        .flatten()
-        .zip(b.values.iter().flatten())
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
 fn depths(h1: f64) -> [(f64, Side); 6] {
@@ -69,12 +49,7 @@ fn sub_cell_survey() {
                 let mut worst = 0.0f64;
                 let (mut tf, mut ts) = (0.0, 0.0);
                 for (z, side) in depths(h1) {
-                    let k = CoatedStressKernels {
-                        coating: elastic(ratio, 0.3),
-                        thickness: h1,
-                        substrate: elastic(1.0, 0.25),
-                        interface_side: side,
-                    };
+                    let k = kernels(ratio, h1, side);
                     let t0 = Instant::now();
                     let full = table(&k, z, &l, StressMethod::Full);
                     let t1 = Instant::now();
@@ -109,12 +84,7 @@ fn sub_cell_agrees_with_the_full_expansion() {
 fn assert_sub_cell_matches_full(l: &OffsetLattice, h1: f64, ratios: &[f64]) {
     for &ratio in ratios {
         for (z, side) in depths(h1) {
-            let k = CoatedStressKernels {
-                coating: elastic(ratio, 0.3),
-                thickness: h1,
-                substrate: elastic(1.0, 0.25),
-                interface_side: side,
-            };
+            let k = kernels(ratio, h1, side);
             assert_eq!(k.method(l), StressMethod::SubCell);
             let full = table(&k, z, l, StressMethod::Full);
             let sub = table(&k, z, l, StressMethod::SubCell);
@@ -166,12 +136,7 @@ fn sub_cell_places_shifted_lattices() {
             rows: 3,
         };
         for (z, side) in [(0.0, Side::Coating), (h1, Side::Substrate)] {
-            let k = CoatedStressKernels {
-                coating: elastic(3.0, 0.3),
-                thickness: h1,
-                substrate: elastic(1.0, 0.25),
-                interface_side: side,
-            };
+            let k = kernels(3.0, h1, side);
             let full = table(&k, z, &l, StressMethod::Full);
             let sub = table(&k, z, &l, StressMethod::SubCell);
             // Relative to the kernel's peak (on the loaded cell).
@@ -219,12 +184,7 @@ fn thin_sub_cell_taper_agrees_with_the_full_expansion() {
             (1.0 / 30.0, 1.0 / 30.0, Side::Coating),
             (1.0 / 30.0, 1.0 / 30.0, Side::Substrate),
         ] {
-            let k = CoatedStressKernels {
-                coating: elastic(ratio, 0.3),
-                thickness: h1,
-                substrate: elastic(1.0, 0.25),
-                interface_side: side,
-            };
+            let k = kernels(ratio, h1, side);
             assert_eq!(k.method(&l), StressMethod::SubCell);
             let full = table(&k, z, &l, StressMethod::Full);
             let sub = table(&k, z, &l, StressMethod::SubCell);
@@ -253,12 +213,7 @@ fn sub_cell_edge_survey() {
                 (h1, Side::Coating),
                 (h1, Side::Substrate),
             ] {
-                let k = CoatedStressKernels {
-                    coating: elastic(ratio, 0.3),
-                    thickness: h1,
-                    substrate: elastic(1.0, 0.25),
-                    interface_side: side,
-                };
+                let k = kernels(ratio, h1, side);
                 let t0 = Instant::now();
                 let full = table(&k, z, &l, StressMethod::Full);
                 let t1 = Instant::now();

@@ -369,7 +369,7 @@ pub fn solve_with(
         })
     };
     let solution = solve_on_windows(&scaled, params, kernels, &mut observe_in_case_units)
-        .map_err(|e| outside_the_model(&scaled, e).unwrap_or_else(|e| scales.unscaled_error(e)))?;
+        .map_err(|e| scales.unscaled_error(outside_the_model(&scaled, e)))?;
     let solution = scales.unscaled_solution(solution, case.body, case.loading.normal_load);
     if let Some(name) = solution.summary().first_non_finite() {
         // Finite in the solver's units, so the case's units are what overflow: a
@@ -392,15 +392,15 @@ pub fn solve_with(
 /// Winkler) is larger than the model allows (the report's [`MAX_CONTACT_FRACTION`] of R, which a
 /// solution beyond carries as a warning) fails because of that: say so, as an input
 /// error naming the keys, rather than blame the iterations. Other errors are
-/// returned as they are (`Err`).
-fn outside_the_model(case: &Case, e: Error) -> std::result::Result<Error, Error> {
+/// returned as they are.
+fn outside_the_model(case: &Case, e: Error) -> Error {
     let Error::NoConvergence {
         iterations,
         residual,
         ..
     } = e
     else {
-        return Err(e);
+        return e;
     };
     let r = case.slider.equivalent_radius();
     let estimate = window::ContactEstimate::of(case);
@@ -408,9 +408,9 @@ fn outside_the_model(case: &Case, e: Error) -> std::result::Result<Error, Error>
     // folding layer can make long inside the model.
     let extent = estimate.symmetric_radius;
     if extent.is_nan() || extent <= MAX_CONTACT_FRACTION * r {
-        return Err(e);
+        return e;
     }
-    Ok(Error::OutsideModel {
+    Error::OutsideModel {
         why: format!(
             "its contact is estimated to reach {:.3e} slider radii (the half-space and \
              paraboloid model holds while it stays below {MAX_CONTACT_FRACTION} R), and the \
@@ -419,7 +419,7 @@ fn outside_the_model(case: &Case, e: Error) -> std::result::Result<Error, Error>
              moduli or the slider's radius",
             extent / r
         ),
-    })
+    }
 }
 
 /// [`solve_with`] in the solver's units: the windows of a case, from the first (its
