@@ -136,63 +136,107 @@ impl Floor {
     }
 }
 
-fn floor_seconds(n: usize) -> f64 {
-    let mut floor = Floor::new(n);
-    let field: Vec<f64> = (0..n * n).map(|k| ((k * 37) % 11) as f64).collect();
-    let mut out = vec![0.0; n * n];
-    floor.convolve(&field, &mut out);
-    let repeats = (2_000_000_000 / (n * n * 64)).clamp(5, 101);
-    let times: Vec<f64> = (0..repeats)
-        .map(|_| {
-            let t = Instant::now();
-            floor.convolve(&field, &mut out);
-            t.elapsed().as_secs_f64()
-        })
-        .collect();
-    median(times)
+/// The minimal convolution and the library's, built once per size and timed in
+/// turns, so that both see the same machine (it is shared and its speed drifts).
+struct Convolutions {
+    floor: Floor,
+    library: thirdbody::convolution::Convolver,
+    spectrum: thirdbody::convolution::KernelSpectrum,
+    field: Vec<f64>,
+    out: Vec<f64>,
 }
 
-/// The library's own convolution (one thread) on the same field, for comparison.
-fn library_convolution_seconds(n: usize) -> f64 {
-    use thirdbody::convolution::ConvolutionPlan;
-    let plan = ConvolutionPlan::new(n, n, Parallelism::Sequential);
-    let spectrum = plan.kernel_spectrum(|i, j| 1.0 / (1.0 + (i * i + j * j) as f64).sqrt());
-    let mut conv = plan.convolver();
-    let field: Vec<f64> = (0..n * n).map(|k| ((k * 37) % 11) as f64).collect();
-    let mut out = vec![0.0; n * n];
-    conv.apply(&spectrum, &field, &mut out);
-    let repeats = (2_000_000_000 / (n * n * 64)).clamp(5, 101);
-    let times: Vec<f64> = (0..repeats)
-        .map(|_| {
-            let t = Instant::now();
-            conv.apply(&spectrum, &field, &mut out);
-            t.elapsed().as_secs_f64()
-        })
-        .collect();
-    median(times)
+impl Convolutions {
+    fn new(n: usize) -> Self {
+        use thirdbody::convolution::ConvolutionPlan;
+        let plan = ConvolutionPlan::new(n, n, Parallelism::Sequential);
+        let spectrum = plan.kernel_spectrum(|i, j| 1.0 / (1.0 + (i * i + j * j) as f64).sqrt());
+        let mut c = Convolutions {
+            floor: Floor::new(n),
+            library: plan.convolver(),
+            spectrum,
+            field: (0..n * n).map(|k| ((k * 37) % 11) as f64).collect(),
+            out: vec![0.0; n * n],
+        };
+        c.floor_seconds(1);
+        c.library_seconds(1);
+        c
+    }
+
+    /// Median of `repeats` minimal convolutions.
+    fn floor_seconds(&mut self, repeats: usize) -> f64 {
+        median(
+            (0..repeats)
+                .map(|_| {
+                    let t = Instant::now();
+                    self.floor.convolve(&self.field, &mut self.out);
+                    t.elapsed().as_secs_f64()
+                })
+                .collect(),
+        )
+    }
+
+    /// Median of `repeats` of the library's own convolution (one thread).
+    fn library_seconds(&mut self, repeats: usize) -> f64 {
+        median(
+            (0..repeats)
+                .map(|_| {
+                    let t = Instant::now();
+                    self.library
+                        .apply(&self.spectrum, &self.field, &mut self.out);
+                    t.elapsed().as_secs_f64()
+                })
+                .collect(),
+        )
+    }
+}
+
+/// Convolutions per timing of the floor: about 30 ms of them.
+fn floor_repeats(n: usize) -> usize {
+    (30_000_000 / (n * n * 30)).clamp(3, 51)
 }
 
 struct Run {
     seconds: f64,
+    /// The floor's median and the median of the per-solve ratios.
+    floor: Option<(f64, f64)>,
     solution: Solution,
 }
 
-fn solve_on(threads: usize, case: &Case, repeats: usize) -> Run {
+/// Solves `case` `repeats` times on `threads` threads; with `floor`, times the
+/// minimal convolution just before each solve and keeps the ratio of the solve's
+/// time per iteration to it.
+fn solve_on(
+    threads: usize,
+    case: &Case,
+    repeats: usize,
+    mut floor: Option<&mut Convolutions>,
+) -> Run {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .expect("thread pool");
     let params = SolverParams::default();
-    let mut times = Vec::new();
+    let n = case.grid.cells[0];
+    let (mut times, mut floors, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
     let mut solution = None;
     for _ in 0..repeats {
+        let f = floor
+            .as_deref_mut()
+            .map(|c| c.floor_seconds(floor_repeats(n)));
         let t = Instant::now();
         let s = pool.install(|| solve(case, &params)).expect("solve");
-        times.push(t.elapsed().as_secs_f64());
+        let seconds = t.elapsed().as_secs_f64();
+        times.push(seconds);
+        if let Some(f) = f {
+            floors.push(f);
+            ratios.push(seconds / s.info.iterations as f64 / f);
+        }
         solution = Some(s);
     }
     Run {
         seconds: median(times),
+        floor: (!floors.is_empty()).then(|| (median(floors), median(ratios))),
         solution: solution.unwrap(),
     }
 }
@@ -230,12 +274,21 @@ fn main() {
     println!("load average at start: {}", load.trim());
     if args.iter().any(|a| a == "--convolution-only") {
         for &n in &sizes {
-            let (floor, library) = (floor_seconds(n), library_convolution_seconds(n));
+            let mut c = Convolutions::new(n);
+            let repeats = repeats_override.unwrap_or(15);
+            let (mut floors, mut libraries, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
+            for _ in 0..repeats {
+                let f = c.floor_seconds(floor_repeats(n));
+                let l = c.library_seconds(floor_repeats(n));
+                floors.push(f);
+                libraries.push(l);
+                ratios.push(l / f);
+            }
             println!(
-                "{n:>5}: floor {:.3} ms, library {:.3} ms, ratio {:.3}",
-                floor * 1e3,
-                library * 1e3,
-                library / floor
+                "{n:>5}: floor {:.3} ms, library {:.3} ms, ratio {:.3} (median of {repeats} paired ratios)",
+                median(floors) * 1e3,
+                median(libraries) * 1e3,
+                median(ratios)
             );
         }
         return;
@@ -272,10 +325,11 @@ fn main() {
             } else {
                 5
             });
-            let floor = floor_seconds(n);
-            let library = library_convolution_seconds(n);
-            let one = solve_on(1, &case, repeats);
-            let many = solve_on(threads, &case, repeats);
+            let mut convolutions = Convolutions::new(n);
+            let library = convolutions.library_seconds(floor_repeats(n));
+            let one = solve_on(1, &case, repeats, Some(&mut convolutions));
+            let many = solve_on(threads, &case, repeats, None);
+            let (floor, iteration_over_floor) = one.floor.expect("timed with the floor");
             let products = one.solution.info.operator_products;
             let per_product = one.seconds / products as f64;
             let per_iteration = one.seconds / one.solution.info.iterations as f64;
@@ -289,7 +343,7 @@ fn main() {
                 per_product * 1e3,
                 floor * 1e3,
                 library * 1e3,
-                per_iteration / floor,
+                iteration_over_floor,
                 per_product / floor,
                 one.seconds,
                 many.seconds,

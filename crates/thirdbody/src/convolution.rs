@@ -129,10 +129,17 @@ pub struct Convolver {
     plan: Arc<ConvolutionPlan>,
     /// Half-spectrum rows of the padded field (row-major, `nx + 1` per row, `ny` rows).
     rows: Vec<Complex<f64>>,
-    /// Column-major spectrum (`nx + 1` columns of `2 ny`) being worked on.
+    /// The rows `first..last` of the field that hold data (the others are zero and
+    /// their spectra in `rows` are not written).
+    data_rows: (usize, usize),
+    /// Column-major spectrum (`nx + 1` columns of `2 ny`) of [`Self::transform_field`].
     columns: Vec<Complex<f64>>,
     /// Spectrum of the last forward transform, kept for several kernels.
     field_spectrum: Vec<Complex<f64>>,
+    /// Each lane's columns of the product's half-spectrum after the column stage,
+    /// row-major (`ny` rows of the lane's width): the inverse row stage reads them
+    /// row by row, with no gather across the whole spectrum.
+    slabs: Vec<Vec<Complex<f64>>>,
     lanes: Vec<Lane>,
 }
 
@@ -140,15 +147,15 @@ pub struct Convolver {
 struct Lane {
     real: Vec<f64>,
     scratch: Vec<Complex<f64>>,
-    /// [`ROW_BLOCK`] half-spectrum rows gathered from the columns.
-    row_block: Vec<Complex<f64>>,
+    /// Up to `block_columns` padded columns being transformed.
+    block: Vec<Complex<f64>>,
+    /// One half-spectrum row assembled from the slabs.
+    row: Vec<Complex<f64>>,
 }
 
-/// Output rows gathered from the column-major spectrum at once: their entries of one
-/// column are adjacent (one cache line for 4 rows), so the gather reads whole lines.
-const ROW_BLOCK: usize = 16;
-/// Columns gathered from the row-major spectrum at once, for the same reason.
-const COLUMN_BLOCK: usize = 16;
+/// Bytes of padded columns transformed together: they stay in a core's L2 cache
+/// through the forward transform, the product and the inverse.
+const COLUMN_BLOCK_BYTES: usize = 1 << 19;
 /// Grids with fewer cells are transformed on one thread whatever the parallelism:
 /// below this the rayon hand-off costs more than it saves.
 pub const PARALLEL_MIN_CELLS: usize = 128 * 128;
@@ -199,20 +206,35 @@ impl ConvolutionPlan {
             .max(self.row_inverse.get_scratch_len())
             .max(self.column_forward.get_inplace_scratch_len())
             .max(self.column_inverse.get_inplace_scratch_len());
-        let spectrum_len = (self.nx + 1) * 2 * self.ny;
+        let (half, py) = (self.nx + 1, 2 * self.ny);
+        let per_lane = half.div_ceil(lanes);
         Convolver {
             plan: Arc::clone(self),
-            rows: vec![Complex::default(); (self.nx + 1) * self.ny],
-            columns: vec![Complex::default(); spectrum_len],
-            field_spectrum: vec![Complex::default(); spectrum_len],
+            rows: vec![Complex::default(); half * self.ny],
+            data_rows: (0, self.ny),
+            columns: Vec::new(),
+            field_spectrum: Vec::new(),
+            slabs: (0..lanes)
+                .map(|t| {
+                    let width = half.saturating_sub(t * per_lane).min(per_lane);
+                    vec![Complex::default(); width * self.ny]
+                })
+                .collect(),
             lanes: (0..lanes)
                 .map(|_| Lane {
                     real: vec![0.0; 2 * self.nx],
                     scratch: vec![Complex::default(); scratch_len],
-                    row_block: vec![Complex::default(); ROW_BLOCK * (self.nx + 1)],
+                    block: vec![Complex::default(); self.block_columns() * py],
+                    row: vec![Complex::default(); half],
                 })
                 .collect(),
         }
+    }
+
+    /// Padded columns transformed together: [`COLUMN_BLOCK_BYTES`] of them, at least
+    /// 4 (one cache line of each row) and at most 16.
+    fn block_columns(&self) -> usize {
+        (COLUMN_BLOCK_BYTES / (2 * self.ny * std::mem::size_of::<Complex<f64>>())).clamp(4, 16)
     }
 
     /// The spectrum of a kernel given as a function of the cell offset
@@ -326,6 +348,8 @@ impl Convolver {
             plan.nx * plan.ny,
             "field size does not match the plan"
         );
+        self.columns
+            .resize((plan.nx + 1) * 2 * plan.ny, Complex::default());
         self.row_stage_forward(field);
         self.column_stage(ColumnWork::Forward);
         std::mem::swap(&mut self.field_spectrum, &mut self.columns);
@@ -334,6 +358,10 @@ impl Convolver {
     /// `out = kernel (*) field` for the field last given to [`Self::transform_field`].
     pub fn apply_to_transformed(&mut self, kernel: &KernelSpectrum, out: &mut [f64]) {
         self.check_sizes(kernel, out.len(), out.len());
+        assert!(
+            !self.field_spectrum.is_empty(),
+            "apply_to_transformed before transform_field"
+        );
         self.column_stage(ColumnWork::Multiply(kernel));
         self.row_stage_inverse(out);
     }
@@ -388,13 +416,21 @@ impl Convolver {
         columns
     }
 
-    /// Real-to-complex transforms of the field's rows, zero-padded to `2 nx`; a row
-    /// that is all zero (outside the contact) has a zero spectrum and is not
-    /// transformed.
+    /// Real-to-complex transforms of the field's rows, zero-padded to `2 nx`. Rows
+    /// before the first and after the last that hold data (outside the contact) have
+    /// zero spectra: they are neither transformed nor written, and the column stage
+    /// pads them with zeros.
     fn row_stage_forward(&mut self, field: &[f64]) {
         let plan = &self.plan;
         let (nx, half) = (plan.nx, plan.nx + 1);
-        let per_lane = plan.ny.div_ceil(self.lanes.len());
+        let holds_data = |j: usize| field[j * nx..(j + 1) * nx].iter().any(|&v| v != 0.0);
+        let first = (0..plan.ny).find(|&j| holds_data(j)).unwrap_or(plan.ny);
+        let last = (first..plan.ny)
+            .rev()
+            .find(|&j| holds_data(j))
+            .map_or(first, |j| j + 1);
+        self.data_rows = (first, last);
+        let per_lane = (last - first).div_ceil(self.lanes.len()).max(1);
         let process = |first_row: usize, dst_rows: &mut [Complex<f64>], lane: &mut Lane| {
             for (k, dst) in dst_rows.chunks_exact_mut(half).enumerate() {
                 let j = first_row + k;
@@ -410,100 +446,129 @@ impl Convolver {
                     .expect("row FFT lengths are fixed by the plan");
             }
         };
+        let data = &mut self.rows[first * half..last * half];
         if self.lanes.len() == 1 {
-            process(0, &mut self.rows, &mut self.lanes[0]);
+            process(first, data, &mut self.lanes[0]);
         } else {
-            self.rows
-                .par_chunks_mut(per_lane * half)
+            data.par_chunks_mut(per_lane * half)
                 .zip(self.lanes.par_iter_mut())
                 .enumerate()
-                .for_each(|(t, (dst, lane))| process(t * per_lane, dst, lane));
+                .for_each(|(t, (dst, lane))| process(first + t * per_lane, dst, lane));
         }
     }
 
-    /// The column stage, each lane on its own run of columns: gathers the columns
-    /// from the row spectra (padding with zeros), then transforms forward, or
-    /// multiplies the kept field spectrum by a kernel, or both and transforms back.
+    /// The column stage, each lane on its own run of columns, a cache-sized block
+    /// of them at a time: gathers the block from the row spectra (zero outside the
+    /// rows holding data and in the padding) and transforms it forward into the kept
+    /// spectrum; or gathers, transforms, multiplies by a kernel and transforms back;
+    /// or multiplies the kept spectrum by a kernel and transforms back. A product's
+    /// first `ny` rows go to the lane's slab, row-major.
     fn column_stage(&mut self, work: ColumnWork<'_>) {
         let plan = &self.plan;
         let (ny, py, half) = (plan.ny, 2 * plan.ny, plan.nx + 1);
-        let per_lane = half.div_ceil(self.lanes.len());
+        let lanes = self.lanes.len();
+        let per_lane = half.div_ceil(lanes);
+        let block_columns = plan.block_columns();
+        let (first_row, last_row) = self.data_rows;
         let rows = &self.rows;
         let field_spectrum = &self.field_spectrum;
-        let process = |first_column: usize, cols: &mut [Complex<f64>], lane: &mut Lane| {
-            let span = first_column * py..first_column * py + cols.len();
-            if let ColumnWork::Multiply(kernel) = work {
-                kernel.multiply_columns(first_column, cols, Some(&field_spectrum[span]));
-                plan.column_inverse
-                    .process_with_scratch(cols, &mut lane.scratch);
-                return;
+        // Gathers columns c0.. of the row spectra into `block` (`py` per column).
+        let gather = |c0: usize, block: &mut [Complex<f64>]| {
+            let width = block.len() / py;
+            for col in block.chunks_exact_mut(py) {
+                col[..first_row].fill(Complex::default());
+                col[last_row..].fill(Complex::default());
             }
-            // COLUMN_BLOCK columns at a time, gathered (each row contributes adjacent
-            // values) and transformed while they are in cache.
-            for (b, block) in cols.chunks_mut(COLUMN_BLOCK * py).enumerate() {
-                let c0 = first_column + b * COLUMN_BLOCK;
-                let width = block.len() / py;
-                for r in 0..ny {
-                    let src = &rows[r * half + c0..][..width];
-                    for (q, v) in src.iter().enumerate() {
-                        block[q * py + r] = *v;
-                    }
-                }
-                for col in block.chunks_exact_mut(py) {
-                    col[ny..].fill(Complex::default());
-                }
-                plan.column_forward
-                    .process_with_scratch(block, &mut lane.scratch);
-                if let ColumnWork::Convolve(kernel) = work {
-                    kernel.multiply_columns(c0, block, None);
-                    plan.column_inverse
-                        .process_with_scratch(block, &mut lane.scratch);
+            for r in first_row..last_row {
+                let src = &rows[r * half + c0..][..width];
+                for (q, v) in src.iter().enumerate() {
+                    block[q * py + r] = *v;
                 }
             }
         };
-        if self.lanes.len() == 1 {
-            process(0, &mut self.columns, &mut self.lanes[0]);
+        if let ColumnWork::Forward = work {
+            let process = |first_column: usize, cols: &mut [Complex<f64>], lane: &mut Lane| {
+                for (b, block) in cols.chunks_mut(block_columns * py).enumerate() {
+                    gather(first_column + b * block_columns, block);
+                    plan.column_forward
+                        .process_with_scratch(block, &mut lane.scratch);
+                }
+            };
+            if lanes == 1 {
+                process(0, &mut self.columns, &mut self.lanes[0]);
+            } else {
+                self.columns
+                    .par_chunks_mut(per_lane * py)
+                    .zip(self.lanes.par_iter_mut())
+                    .enumerate()
+                    .for_each(|(t, (cols, lane))| process(t * per_lane, cols, lane));
+            }
+            return;
+        }
+        let process = |first_column: usize, slab: &mut [Complex<f64>], lane: &mut Lane| {
+            let width_of_lane = slab.len() / ny;
+            for c0 in (first_column..first_column + width_of_lane).step_by(block_columns) {
+                let width = block_columns.min(first_column + width_of_lane - c0);
+                let block = &mut lane.block[..width * py];
+                match work {
+                    ColumnWork::Convolve(kernel) => {
+                        gather(c0, block);
+                        plan.column_forward
+                            .process_with_scratch(block, &mut lane.scratch);
+                        kernel.multiply_columns(c0, block, None);
+                    }
+                    ColumnWork::Multiply(kernel) => {
+                        let kept = &field_spectrum[c0 * py..][..width * py];
+                        kernel.multiply_columns(c0, block, Some(kept));
+                    }
+                    ColumnWork::Forward => unreachable!("handled above"),
+                }
+                plan.column_inverse
+                    .process_with_scratch(block, &mut lane.scratch);
+                // The first ny rows of the block into the slab, a row at a time.
+                let offset = c0 - first_column;
+                for (r, dst) in slab.chunks_exact_mut(width_of_lane).enumerate() {
+                    for (q, v) in dst[offset..offset + width].iter_mut().enumerate() {
+                        *v = block[q * py + r];
+                    }
+                }
+            }
+        };
+        if lanes == 1 {
+            process(0, &mut self.slabs[0], &mut self.lanes[0]);
         } else {
-            self.columns
-                .par_chunks_mut(per_lane * py)
+            self.slabs
+                .par_iter_mut()
                 .zip(self.lanes.par_iter_mut())
                 .enumerate()
-                .for_each(|(t, (cols, lane))| process(t * per_lane, cols, lane));
+                .for_each(|(t, (slab, lane))| process(t * per_lane, slab, lane));
         }
     }
 
-    /// Complex-to-real transforms of the first `ny` rows of the column-major
-    /// spectrum, gathered [`ROW_BLOCK`] rows at a time; the padding rows are not
-    /// computed.
+    /// Complex-to-real transforms of the product's first `ny` rows, each assembled
+    /// from the lanes' slabs; the padding rows are not computed.
     fn row_stage_inverse(&mut self, out: &mut [f64]) {
         let plan = &self.plan;
-        let (nx, half, py) = (plan.nx, plan.nx + 1, 2 * plan.ny);
+        let nx = plan.nx;
         let per_lane = plan.ny.div_ceil(self.lanes.len());
-        let columns = &self.columns;
+        let slabs = &self.slabs;
         let process = |first_row: usize, dst_rows: &mut [f64], lane: &mut Lane| {
-            for (b, dst_block) in dst_rows.chunks_mut(ROW_BLOCK * nx).enumerate() {
-                let r0 = first_row + b * ROW_BLOCK;
-                let count = dst_block.len() / nx;
-                for c in 0..half {
-                    let src = &columns[c * py + r0..][..count];
-                    for (q, v) in src.iter().enumerate() {
-                        lane.row_block[q * half + c] = *v;
-                    }
+            for (k, dst) in dst_rows.chunks_exact_mut(nx).enumerate() {
+                let r = first_row + k;
+                let mut c = 0;
+                for slab in slabs {
+                    let width = slab.len() / plan.ny;
+                    lane.row[c..c + width].copy_from_slice(&slab[r * width..][..width]);
+                    c += width;
                 }
-                for (src, dst) in lane
-                    .row_block
-                    .chunks_exact_mut(half)
-                    .zip(dst_block.chunks_exact_mut(nx))
-                {
-                    // The first and last bins of a real signal's spectrum are real;
-                    // drop the rounding residue so realfft accepts them.
-                    src[0].im = 0.0;
-                    src[nx].im = 0.0;
-                    plan.row_inverse
-                        .process_with_scratch(src, &mut lane.real, &mut lane.scratch)
-                        .expect("row FFT lengths are fixed by the plan");
-                    dst.copy_from_slice(&lane.real[..nx]);
-                }
+                // The first and last bins of a real signal's spectrum are real;
+                // drop the rounding residue so realfft accepts them.
+                lane.row[0].im = 0.0;
+                lane.row[nx].im = 0.0;
+                plan.row_inverse
+                    .process_with_scratch(&mut lane.row, &mut lane.real, &mut lane.scratch)
+                    .expect("row FFT lengths are fixed by the plan");
+                dst.copy_from_slice(&lane.real[..nx]);
             }
         };
         if self.lanes.len() == 1 {

@@ -90,6 +90,57 @@ impl Passes {
     }
 }
 
+/// Running sums a chunk's cells are dealt to in turn (cell `k` of a chunk to sum
+/// `k % LANES`), added in order at the chunk's end. One running sum would make
+/// every addition wait for the one before (about 4 cycles a cell); independent ones
+/// overlap, and the order is still fixed.
+pub(crate) const LANES: usize = 8;
+
+/// The sums of `term(k)` (component-wise) over the cells `a..b` of one chunk, in
+/// [`LANES`] interleaved running sums added in order.
+#[inline(always)]
+pub(crate) fn lane_sum<const K: usize>(
+    a: usize,
+    b: usize,
+    mut term: impl FnMut(usize) -> [f64; K],
+) -> [f64; K] {
+    let mut lanes = [[0.0; K]; LANES];
+    let mut k = a;
+    while k + LANES <= b {
+        for (l, lane) in lanes.iter_mut().enumerate() {
+            let t = term(k + l);
+            for (s, v) in lane.iter_mut().zip(t) {
+                *s += v;
+            }
+        }
+        k += LANES;
+    }
+    for (lane, k) in lanes.iter_mut().zip(k..b) {
+        let t = term(k);
+        for (s, v) in lane.iter_mut().zip(t) {
+            *s += v;
+        }
+    }
+    add_in_order(&lanes)
+}
+
+/// [`lane_sum`] of the first part of `term(k)`, and the largest of its second part.
+#[inline(always)]
+pub(crate) fn lane_sum_max<const K: usize>(
+    a: usize,
+    b: usize,
+    mut term: impl FnMut(usize) -> ([f64; K], f64),
+) -> ([f64; K], f64) {
+    let mut largest = [f64::NEG_INFINITY; LANES];
+    let sums = lane_sum(a, b, |k| {
+        let (t, m) = term(k);
+        let lane = &mut largest[(k - a) % LANES];
+        *lane = lane.max(m);
+        t
+    });
+    (sums, largest.into_iter().fold(f64::NEG_INFINITY, f64::max))
+}
+
 /// The component-wise sum of chunk partials, in their order.
 pub(crate) fn add_in_order<const K: usize>(partials: &[[f64; K]]) -> [f64; K] {
     let mut total = [0.0; K];
@@ -132,5 +183,16 @@ mod tests {
         // Against a plain sum (a second method): equal to rounding.
         let plain: f64 = x.iter().sum();
         assert!((a[0] - plain).abs() < 1e-12 * plain);
+    }
+
+    #[test]
+    fn lane_sums_equal_a_plain_sum_to_rounding_and_cover_every_cell() {
+        let x: Vec<f64> = (0..1003).map(|k| ((k * 31) % 17) as f64 - 8.0).collect();
+        for (a, b) in [(0, 1003), (5, 13), (0, 7), (3, 3), (8, 1000)] {
+            let [s, count] = lane_sum(a, b, |k| [x[k], 1.0]);
+            // Integers: every order gives the exact sum.
+            assert_eq!(s, x[a..b].iter().sum::<f64>());
+            assert_eq!(count, (b - a) as f64);
+        }
     }
 }

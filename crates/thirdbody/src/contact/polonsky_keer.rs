@@ -14,7 +14,7 @@ use super::{Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
 use crate::operator::InfluenceOperator;
-use crate::passes::{add_in_order, Passes, CHUNK};
+use crate::passes::{add_in_order, lane_sum, lane_sum_max, Passes, CHUNK};
 use crate::problem::ContactProblem;
 
 /// What the user can try when CG stops short.
@@ -61,37 +61,21 @@ pub(crate) fn polonsky_keer(
         }
     };
     apply(op, p, &mut u);
+    let mut sums = GapSums::of(&passes, &u, f, p);
     let mut conjugate = false;
     let mut g_old = 1.0;
     let mut since_refresh = 0;
     for iteration in 1..=params.max_iterations {
-        // Gap g = u + f, its sum over the contact (D is its mean there), and the
-        // pressure sums and largest |u| of the residual's scales.
-        let parts: Vec<[f64; 5]> = g
-            .par_chunks_mut(CHUNK)
-            .with_min_len(min_len)
-            .enumerate()
-            .map(|(c, gc)| {
-                let s = c * CHUNK;
-                let mut part = [0.0; 5];
-                for (k, gk) in gc.iter_mut().enumerate() {
-                    let (uk, pk) = (u[s + k], p[s + k]);
-                    *gk = uk + f[s + k];
-                    if pk > 0.0 {
-                        part[0] += *gk;
-                        part[1] += 1.0;
-                        part[2] += pk;
-                    }
-                    part[3] = part[3].max(uk.abs());
-                }
-                part
-            })
-            .collect();
-        let [gap_sum, contact, p_sum, _, _] = add_in_order(&parts);
-        let w_max = parts.iter().fold(0.0f64, |m, part| m.max(part[3]));
+        let GapSums {
+            gap_sum,
+            contact,
+            p_sum,
+            w_max,
+        } = sums;
         let approach = gap_sum / contact.max(1.0);
-        // The gap with that D; the complementarity residual's sums (see
-        // `relative_complementarity_residual`) and the squared gap over the contact.
+        // The gap g = u + f - D with D the mean of u + f over the contact; the
+        // complementarity residual's sums (see `relative_complementarity_residual`)
+        // and the squared gap over the contact.
         let c_scale = p_sum / contact / w_max;
         let [num, den, big_g] = {
             let parts: Vec<[f64; 3]> = g
@@ -100,18 +84,14 @@ pub(crate) fn polonsky_keer(
                 .enumerate()
                 .map(|(c, gc)| {
                     let s = c * CHUNK;
-                    let mut part = [0.0; 3];
-                    for (k, gk) in gc.iter_mut().enumerate() {
-                        *gk -= approach;
-                        let pk = p[s + k];
-                        let m = pk.min(c_scale * *gk);
-                        part[0] += m * m;
-                        part[1] += pk * pk;
-                        if pk > 0.0 {
-                            part[2] += *gk * *gk;
-                        }
-                    }
-                    part
+                    let (uc, fc, pc) = (&u[s..], &f[s..], &p[s..]);
+                    lane_sum(0, gc.len(), |k| {
+                        let (gk, pk) = (uc[k] + fc[k] - approach, pc[k]);
+                        gc[k] = gk;
+                        let m = pk.min(c_scale * gk);
+                        let on = if pk > 0.0 { gk * gk } else { 0.0 };
+                        [m * m, pk * pk, on]
+                    })
                 })
                 .collect();
             add_in_order(&parts)
@@ -127,6 +107,7 @@ pub(crate) fn polonsky_keer(
             }
             // Confirm on an exactly recomputed A p before stopping.
             apply(op, p, &mut u);
+            sums = GapSums::of(&passes, &u, f, p);
             since_refresh = 0;
             continue;
         }
@@ -160,16 +141,13 @@ pub(crate) fn polonsky_keer(
             // Over the contact: sum of r, g.t, r.t and sum of t; the projected
             // curvature is sum((r - rbar) t) = r.t - rbar sum(t).
             let [r_sum, g_t, r_t, t_sum] = passes.sum(n, |a, b| {
-                let mut part = [0.0; 4];
-                for k in a..b {
+                lane_sum(a, b, |k| {
                     if p[k] > 0.0 {
-                        part[0] += r[k];
-                        part[1] += g[k] * t[k];
-                        part[2] += r[k] * t[k];
-                        part[3] += t[k];
+                        [r[k], g[k] * t[k], r[k] * t[k], t[k]]
+                    } else {
+                        [0.0; 4]
                     }
-                }
-                part
+                })
             });
             let rbar = r_sum / contact.max(1.0);
             let den = r_t - rbar * t_sum;
@@ -196,21 +174,22 @@ pub(crate) fn polonsky_keer(
                 .enumerate()
                 .map(|(c, pc)| {
                     let s = c * CHUNK;
-                    let mut part = [0.0; 3];
-                    for (k, pk) in pc.iter_mut().enumerate() {
+                    let (tc, gc) = (&t[s..], &g[s..]);
+                    lane_sum(0, pc.len(), |k| {
+                        let pk = &mut pc[k];
+                        let mut flags = [0.0; 2];
                         if *pk > 0.0 {
-                            *pk -= tau * t[s + k];
+                            *pk -= tau * tc[k];
                             if *pk < 0.0 {
                                 *pk = 0.0;
-                                part[1] = 1.0;
+                                flags[0] = 1.0;
                             }
-                        } else if g[s + k] < 0.0 {
-                            *pk -= tau * g[s + k];
-                            part[2] = 1.0;
+                        } else if gc[k] < 0.0 {
+                            *pk -= tau * gc[k];
+                            flags[1] = 1.0;
                         }
-                        part[0] += *pk;
-                    }
-                    part
+                        [*pk, flags[0], flags[1]]
+                    })
                 })
                 .collect();
             add_in_order(&parts)
@@ -225,21 +204,68 @@ pub(crate) fn polonsky_keer(
         if projected || overlap || since_refresh >= REFRESH_EVERY {
             passes.scale(p, scale);
             apply(op, p, &mut u);
+            sums = GapSums::of(&passes, &u, f, p);
             since_refresh = 0;
         } else {
-            p.par_chunks_mut(CHUNK)
+            // The scaled step, and the next iteration's gap sums on the way.
+            let parts: Vec<([f64; 3], f64)> = p
+                .par_chunks_mut(CHUNK)
                 .zip(u.par_chunks_mut(CHUNK))
-                .zip(r.par_chunks(CHUNK))
                 .with_min_len(min_len)
-                .for_each(|((pc, uc), rc)| {
-                    for ((pk, uk), rk) in pc.iter_mut().zip(uc.iter_mut()).zip(rc) {
-                        *pk *= scale;
-                        *uk = scale * (*uk - tau * rk);
-                    }
-                });
+                .enumerate()
+                .map(|(c, (pc, uc))| {
+                    let s = c * CHUNK;
+                    let (rc, fc) = (&r[s..], &f[s..]);
+                    lane_sum_max(0, pc.len(), |k| {
+                        pc[k] *= scale;
+                        uc[k] = scale * (uc[k] - tau * rc[k]);
+                        GapSums::term(uc[k], fc[k], pc[k])
+                    })
+                })
+                .collect();
+            sums = GapSums::add(&parts);
             since_refresh += 1;
         }
     }
     let residual = monitor.last_residual();
     Err(monitor.failure(params.max_iterations, residual, HINT.into()))
+}
+
+/// The sums of the gap `u + f` over the contact (`p > 0`), of the contact's cells
+/// and of the pressure, and the largest `|u|`: what an iteration needs first.
+#[derive(Debug, Clone, Copy)]
+struct GapSums {
+    gap_sum: f64,
+    contact: f64,
+    p_sum: f64,
+    w_max: f64,
+}
+
+impl GapSums {
+    /// The sums over all cells, in one pass.
+    fn of(passes: &Passes, u: &[f64], f: &[f64], p: &[f64]) -> Self {
+        let parts = passes.partials(u.len(), |a, b| {
+            lane_sum_max(a, b, |k| GapSums::term(u[k], f[k], p[k]))
+        });
+        GapSums::add(&parts)
+    }
+
+    /// One cell's terms.
+    #[inline(always)]
+    fn term(u: f64, f: f64, p: f64) -> ([f64; 3], f64) {
+        let sums = if p > 0.0 { [u + f, 1.0, p] } else { [0.0; 3] };
+        (sums, u.abs())
+    }
+
+    /// The chunks' partials added in order.
+    fn add(parts: &[([f64; 3], f64)]) -> Self {
+        let sums: Vec<[f64; 3]> = parts.iter().map(|(s, _)| *s).collect();
+        let [gap_sum, contact, p_sum] = add_in_order(&sums);
+        GapSums {
+            gap_sum,
+            contact,
+            p_sum,
+            w_max: parts.iter().fold(0.0f64, |m, (_, w)| m.max(*w)),
+        }
+    }
 }
