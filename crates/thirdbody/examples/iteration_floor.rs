@@ -1,14 +1,16 @@
 //! Issue 13's benchmark: for the Hertz benchmark case and the paper's Fig. 3 case at
-//! 256² to 2048² cells, the solve's time per operator product (one DC-FFT
-//! convolution) on one thread, against the *minimal DC-FFT convolution* measured in
-//! the same run, and the speed-up of N threads over one.
+//! 256² to 2048² cells, the solve's time per iteration and per operator product (one
+//! DC-FFT convolution) on one thread, against the *minimal DC-FFT convolution*, and
+//! the speed-up of N threads over one.
 //!
 //! The floor is written here independently of the library (realfft rows, a blocked
 //! transpose, rustfft columns): the zero-padded `2nx x 2ny` convolution of an
 //! `nx x ny` field that transforms only the `ny` rows holding data, keeps only the
-//! `ny` output rows that are needed, and does nothing else. `conv ms` is the
-//! library's own convolution on one thread. Every time printed is a median of
-//! repeats.
+//! `ny` output rows that are needed, and does nothing else. The machine is shared
+//! and its speed drifts over seconds, so the floor is timed (median of a few) just
+//! before each one-thread solve, and `it/fl` is the median over the solves of each
+//! solve's time per iteration over its floor. `conv ms` is the library's own
+//! full-padding convolution on one thread. Every other time is a median of repeats.
 //!
 //! Run: `cargo run --release -p thirdbody --example iteration_floor -- [--sizes 256,512]
 //! [--threads N] [--cases hertz,fig3] [--repeats R] [--convolution-only]`

@@ -28,10 +28,13 @@ pub enum Parallelism {
     Rayon,
 }
 
-/// FFT plans for the DC-FFT of one grid size.
+/// FFT plans for the DC-FFT of one grid size, on a wrap-around grid of `px x py`
+/// (`2nx x 2ny` unless trimmed to a field's support, see [`PaddedSize`]).
 pub struct ConvolutionPlan {
     nx: usize,
     ny: usize,
+    px: usize,
+    py: usize,
     row_forward: Arc<dyn RealToComplex<f64>>,
     row_inverse: Arc<dyn ComplexToReal<f64>>,
     column_forward: Arc<dyn Fft<f64>>,
@@ -44,6 +47,8 @@ impl std::fmt::Debug for ConvolutionPlan {
         f.debug_struct("ConvolutionPlan")
             .field("nx", &self.nx)
             .field("ny", &self.ny)
+            .field("px", &self.px)
+            .field("py", &self.py)
             .field("parallelism", &self.parallelism)
             .finish()
     }
@@ -55,6 +60,8 @@ impl std::fmt::Debug for ConvolutionPlan {
 pub struct KernelSpectrum {
     nx: usize,
     ny: usize,
+    px: usize,
+    py: usize,
     values: SpectrumValues,
     /// The kernel at zero offset (the self-influence of a cell).
     self_coefficient: f64,
@@ -66,9 +73,13 @@ enum SpectrumValues {
     /// Any kernel: column-major, `nx + 1` columns of `2 ny` complex values.
     General(Vec<Complex<f64>>),
     /// A kernel even in x and in y has a real spectrum that is even in the column
-    /// frequency: `nx + 1` columns of its first `ny + 1` real values, a quarter of
-    /// the memory (and of the memory traffic of each product).
-    Even(Vec<f64>),
+    /// frequency: `px/2 + 1` columns of its first `py/2 + 1` real values, a quarter
+    /// of the memory (and of the memory traffic of each product). The kernel's
+    /// quadrant is kept to build its spectrum on trimmed paddings.
+    Even {
+        values: Vec<f64>,
+        quadrant: Arc<Vec<f64>>,
+    },
 }
 
 impl KernelSpectrum {
@@ -76,7 +87,9 @@ impl KernelSpectrum {
     pub fn bytes(&self) -> usize {
         match &self.values {
             SpectrumValues::General(v) => v.len() * std::mem::size_of::<Complex<f64>>(),
-            SpectrumValues::Even(v) => v.len() * std::mem::size_of::<f64>(),
+            SpectrumValues::Even { values, quadrant } => {
+                (values.len() + quadrant.len()) * std::mem::size_of::<f64>()
+            }
         }
     }
 
@@ -88,7 +101,7 @@ impl KernelSpectrum {
         columns: &mut [Complex<f64>],
         field: Option<&[Complex<f64>]>,
     ) {
-        let (py, hy) = (2 * self.ny, self.ny + 1);
+        let (py, hy) = (self.py, self.py / 2 + 1);
         match &self.values {
             SpectrumValues::General(values) => {
                 let k = &values[first_column * py..][..columns.len()];
@@ -100,21 +113,27 @@ impl KernelSpectrum {
                     None => columns.iter_mut().zip(k).for_each(|(c, k)| *c *= k),
                 }
             }
-            SpectrumValues::Even(values) => {
+            SpectrumValues::Even { values, .. } => {
                 for (q, col) in columns.chunks_exact_mut(py).enumerate() {
                     let k = &values[(first_column + q) * hy..][..hy];
                     if let Some(f) = field {
                         col.copy_from_slice(&f[q * py..][..py]);
                     }
-                    // Rows 0..=ny, then ny+1..2ny mirrored onto ny-1..1.
+                    // Rows 0..=py/2, then py/2+1..py mirrored onto py/2-1..1.
                     let (low, high) = col.split_at_mut(hy);
                     low.iter_mut().zip(k).for_each(|(c, k)| *c *= *k);
                     high.iter_mut()
-                        .zip(k[1..self.ny].iter().rev())
+                        .zip(k[1..py / 2].iter().rev())
                         .for_each(|(c, k)| *c *= *k);
                 }
             }
         }
+    }
+
+    /// Whether the kernel is even in x and in y (and so can be used on a trimmed
+    /// padding, [`ConvolutionPlan::respectrum`]).
+    pub fn is_even(&self) -> bool {
+        matches!(self.values, SpectrumValues::Even { .. })
     }
 
     /// The kernel value at zero offset.
@@ -163,17 +182,55 @@ pub const PARALLEL_MIN_CELLS: usize = 128 * 128;
 impl ConvolutionPlan {
     /// Plans the DC-FFT for fields of `nx x ny` cells.
     pub fn new(nx: usize, ny: usize, parallelism: Parallelism) -> Arc<Self> {
+        Self::padded(nx, ny, [2 * nx, 2 * ny], parallelism)
+    }
+
+    /// Plans the DC-FFT for fields of `nx x ny` cells on a `px x py` wrap-around
+    /// grid (even sizes, `n <= p <= 2n`): exact for fields whose support the padding
+    /// [`PaddedSize::holds`], with even kernels only.
+    pub fn padded(
+        nx: usize,
+        ny: usize,
+        [px, py]: [usize; 2],
+        parallelism: Parallelism,
+    ) -> Arc<Self> {
+        assert!(
+            px % 2 == 0
+                && py % 2 == 0
+                && (nx..=2 * nx).contains(&px)
+                && (ny..=2 * ny).contains(&py),
+            "padding {px} x {py} for {nx} x {ny} cells"
+        );
         let mut real = RealFftPlanner::<f64>::new();
         let mut complex = FftPlanner::<f64>::new();
         Arc::new(ConvolutionPlan {
             nx,
             ny,
-            row_forward: real.plan_fft_forward(2 * nx),
-            row_inverse: real.plan_fft_inverse(2 * nx),
-            column_forward: complex.plan_fft_forward(2 * ny),
-            column_inverse: complex.plan_fft_inverse(2 * ny),
+            px,
+            py,
+            row_forward: real.plan_fft_forward(px),
+            row_inverse: real.plan_fft_inverse(px),
+            column_forward: complex.plan_fft_forward(py),
+            column_inverse: complex.plan_fft_inverse(py),
             parallelism,
         })
+    }
+
+    /// The wrap-around grid's size.
+    pub fn padding(&self) -> [usize; 2] {
+        [self.px, self.py]
+    }
+
+    /// Whether the transforms may use the rayon pool.
+    pub fn parallelism(&self) -> Parallelism {
+        self.parallelism
+    }
+
+    /// Whether this plan's padding keeps the DC-FFT exact for a field with `support`
+    /// (with an even kernel).
+    pub fn holds(&self, support: &Support) -> bool {
+        self.px >= needed_padding(self.nx, support.columns)
+            && self.py >= needed_padding(self.ny, support.rows)
     }
 
     /// Lanes a transform is split into: one below [`PARALLEL_MIN_CELLS`] or when
@@ -206,7 +263,7 @@ impl ConvolutionPlan {
             .max(self.row_inverse.get_scratch_len())
             .max(self.column_forward.get_inplace_scratch_len())
             .max(self.column_inverse.get_inplace_scratch_len());
-        let (half, py) = (self.nx + 1, 2 * self.ny);
+        let (half, py) = (self.px / 2 + 1, self.py);
         let per_lane = half.div_ceil(lanes);
         Convolver {
             plan: Arc::clone(self),
@@ -222,7 +279,7 @@ impl ConvolutionPlan {
                 .collect(),
             lanes: (0..lanes)
                 .map(|_| Lane {
-                    real: vec![0.0; 2 * self.nx],
+                    real: vec![0.0; self.px],
                     scratch: vec![Complex::default(); scratch_len],
                     block: vec![Complex::default(); self.block_columns() * py],
                     row: vec![Complex::default(); half],
@@ -234,7 +291,7 @@ impl ConvolutionPlan {
     /// Padded columns transformed together: [`COLUMN_BLOCK_BYTES`] of them, at least
     /// 4 (one cache line of each row) and at most 16.
     fn block_columns(&self) -> usize {
-        (COLUMN_BLOCK_BYTES / (2 * self.ny * std::mem::size_of::<Complex<f64>>())).clamp(4, 16)
+        (COLUMN_BLOCK_BYTES / (self.py * std::mem::size_of::<Complex<f64>>())).clamp(4, 16)
     }
 
     /// The spectrum of a kernel given as a function of the cell offset
@@ -243,17 +300,20 @@ impl ConvolutionPlan {
         self: &Arc<Self>,
         kernel: impl Fn(i64, i64) -> f64 + Sync,
     ) -> KernelSpectrum {
-        let (nx, ny) = (self.nx, self.ny);
-        let (px, py) = (2 * nx, 2 * ny);
+        let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
+        assert!(
+            [px, py] == [2 * nx, 2 * ny],
+            "a kernel with no symmetry needs the full padding"
+        );
         // Kernel on the wrap-around grid; offset nx (or ny) is never used by a pair
         // of cells and stays zero.
         let mut wrapped = vec![0.0; px * py];
         wrapped.par_chunks_mut(px).enumerate().for_each(|(r, row)| {
-            let Some(dj) = wrapped_offset(r, ny) else {
+            let Some(dj) = wrapped_offset(r, py, ny) else {
                 return;
             };
             for (c, v) in row.iter_mut().enumerate() {
-                if let Some(di) = wrapped_offset(c, nx) {
+                if let Some(di) = wrapped_offset(c, px, nx) {
                     *v = kernel(di, dj);
                 }
             }
@@ -264,21 +324,37 @@ impl ConvolutionPlan {
     /// The spectrum of a kernel that is even in x and in y, given on one quadrant:
     /// `quadrant[dj * nx + di]` for `0 <= di < nx`, `0 <= dj < ny`.
     pub fn even_kernel_spectrum(self: &Arc<Self>, quadrant: &[f64]) -> KernelSpectrum {
-        let (nx, ny) = (self.nx, self.ny);
+        self.even_spectrum_of(Arc::new(quadrant.to_vec()))
+    }
+
+    /// The spectrum on this plan's padding of the even kernel that `kernel` was
+    /// built from (on a plan of the same grid).
+    pub fn respectrum(self: &Arc<Self>, kernel: &KernelSpectrum) -> KernelSpectrum {
+        assert!(
+            kernel.nx == self.nx && kernel.ny == self.ny,
+            "kernel of another grid"
+        );
+        match &kernel.values {
+            SpectrumValues::Even { quadrant, .. } => self.even_spectrum_of(Arc::clone(quadrant)),
+            SpectrumValues::General(_) => panic!("only an even kernel has a trimmed padding"),
+        }
+    }
+
+    fn even_spectrum_of(self: &Arc<Self>, quadrant: Arc<Vec<f64>>) -> KernelSpectrum {
+        let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
         assert_eq!(
             quadrant.len(),
             nx * ny,
             "quadrant size does not match the plan"
         );
-        let px = 2 * nx;
-        let mut wrapped = vec![0.0; px * 2 * ny];
+        let mut wrapped = vec![0.0; px * py];
         wrapped.par_chunks_mut(px).enumerate().for_each(|(r, row)| {
-            let Some(dj) = wrapped_offset(r, ny) else {
+            let Some(dj) = wrapped_offset(r, py, ny) else {
                 return;
             };
             let src = &quadrant[dj.unsigned_abs() as usize * nx..][..nx];
             for (c, v) in row.iter_mut().enumerate() {
-                if let Some(di) = wrapped_offset(c, nx) {
+                if let Some(di) = wrapped_offset(c, px, nx) {
                     *v = src[di.unsigned_abs() as usize];
                 }
             }
@@ -288,21 +364,23 @@ impl ConvolutionPlan {
             unreachable!("a wrapped kernel's spectrum is general")
         };
         // The spectrum of an even real kernel is real and even: keep the real parts
-        // of the first ny + 1 rows (the imaginary parts are rounding residue).
-        let (py, hy) = (2 * ny, ny + 1);
+        // of the first py/2 + 1 rows (the imaginary parts are rounding residue).
+        let hy = py / 2 + 1;
         let even: Vec<f64> = values
             .chunks_exact(py)
             .flat_map(|col| col[..hy].iter().map(|v| v.re))
             .collect();
         KernelSpectrum {
-            values: SpectrumValues::Even(even),
+            values: SpectrumValues::Even {
+                values: even,
+                quadrant,
+            },
             ..general
         }
     }
 
     fn spectrum_of_wrapped(self: &Arc<Self>, wrapped: Vec<f64>) -> KernelSpectrum {
-        let (nx, ny) = (self.nx, self.ny);
-        let (px, py) = (2 * nx, 2 * ny);
+        let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
         let self_coefficient = wrapped[0];
         let mut conv = self.convolver();
         let values = conv.forward_padded(&wrapped, py);
@@ -310,20 +388,103 @@ impl ConvolutionPlan {
         KernelSpectrum {
             nx,
             ny,
+            px,
+            py,
             values: SpectrumValues::General(values.into_iter().map(|v| v * scale).collect()),
             self_coefficient,
         }
     }
 }
 
-/// Offset in cells of index `k` of a wrap-around axis of `2 n` entries, `None` for
-/// the unused middle entry.
-fn wrapped_offset(k: usize, n: usize) -> Option<i64> {
-    match k.cmp(&n) {
-        std::cmp::Ordering::Less => Some(k as i64),
-        std::cmp::Ordering::Equal => None,
-        std::cmp::Ordering::Greater => Some(k as i64 - 2 * n as i64),
+/// Where a field is not zero: the columns `columns.0..columns.1` of the rows
+/// `rows.0..rows.1`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Support {
+    /// First column holding data and one past the last.
+    pub columns: (usize, usize),
+    /// First row holding data and one past the last.
+    pub rows: (usize, usize),
+}
+
+impl Support {
+    /// The support of an `nx x ny` row-major field; `None` if it is zero.
+    pub fn of(field: &[f64], nx: usize, ny: usize) -> Option<Support> {
+        assert_eq!(field.len(), nx * ny, "field size does not match the grid");
+        let mut support: Option<Support> = None;
+        for (j, row) in field.chunks_exact(nx).enumerate() {
+            let Some(first) = row.iter().position(|&v| v != 0.0) else {
+                continue;
+            };
+            let last = row.iter().rposition(|&v| v != 0.0).map_or(first, |k| k + 1);
+            support = Some(match support {
+                None => Support {
+                    columns: (first, last),
+                    rows: (j, j + 1),
+                },
+                Some(s) => Support {
+                    columns: (s.columns.0.min(first), s.columns.1.max(last)),
+                    rows: (s.rows.0, j + 1),
+                },
+            });
+        }
+        support
     }
+
+    /// The support widened by `margin` cells on every side, within the grid.
+    pub fn widened(&self, margin: usize, nx: usize, ny: usize) -> Support {
+        Support {
+            columns: (
+                self.columns.0.saturating_sub(margin),
+                (self.columns.1 + margin).min(nx),
+            ),
+            rows: (
+                self.rows.0.saturating_sub(margin),
+                (self.rows.1 + margin).min(ny),
+            ),
+        }
+    }
+}
+
+/// The shortest even wrap-around length on an axis of `n` cells that keeps the
+/// DC-FFT of an even kernel exact for data in the cells `first..last` and output in
+/// every cell: no pair of an output and a data cell is more than half the length
+/// apart (the wrap holds the offsets up to `p/2` both ways), and the output fits.
+/// The full padding `2n` holds any data.
+pub fn needed_padding(n: usize, (first, last): (usize, usize)) -> usize {
+    let reach = (n - 1 - first.min(n - 1)).max(last.saturating_sub(1));
+    (2 * reach).max(n).next_multiple_of(2)
+}
+
+/// The padding an FFT does fastest among lengths of at least `needed`: the next
+/// `2^a`, `3 * 2^a`, `5 * 2^a` or `7 * 2^a` (rustfft's and realfft's quick sizes),
+/// at most `2n`.
+pub fn quick_padding(needed: usize, n: usize) -> usize {
+    let quick = [1, 3, 5, 7]
+        .into_iter()
+        .map(|m| {
+            let mut p = 2 * m;
+            while p < needed {
+                p *= 2;
+            }
+            p
+        })
+        .min()
+        .unwrap_or(2 * n);
+    quick.min(2 * n)
+}
+
+/// Offset in cells of index `k` of a wrap-around axis of `p` (even) entries for `n`
+/// cells: `k` up to `p/2`, then `k - p`; `None` where no pair of cells is that far
+/// apart (offset `n` and beyond), which stays zero. On the full padding (`p = 2n`)
+/// that is the middle entry; on a trimmed one the middle entry `p/2` serves both
+/// `+p/2` and `-p/2`, which an even kernel does not tell apart.
+fn wrapped_offset(k: usize, p: usize, n: usize) -> Option<i64> {
+    let offset = if k <= p / 2 {
+        k as i64
+    } else {
+        k as i64 - p as i64
+    };
+    (offset.unsigned_abs() < n as u64).then_some(offset)
 }
 
 impl Convolver {
@@ -349,7 +510,7 @@ impl Convolver {
             "field size does not match the plan"
         );
         self.columns
-            .resize((plan.nx + 1) * 2 * plan.ny, Complex::default());
+            .resize((plan.px / 2 + 1) * plan.py, Complex::default());
         self.row_stage_forward(field);
         self.column_stage(ColumnWork::Forward);
         std::mem::swap(&mut self.field_spectrum, &mut self.columns);
@@ -372,6 +533,10 @@ impl Convolver {
             kernel.nx == plan.nx && kernel.ny == plan.ny,
             "kernel of another grid"
         );
+        assert!(
+            [kernel.px, kernel.py] == [plan.px, plan.py],
+            "kernel of another padding"
+        );
         let cells = plan.nx * plan.ny;
         assert_eq!(field, cells, "field size does not match the plan");
         assert_eq!(out, cells, "output size does not match the plan");
@@ -382,7 +547,7 @@ impl Convolver {
     /// split over the pool like the other stages.
     fn forward_padded(&mut self, padded: &[f64], rows: usize) -> Vec<Complex<f64>> {
         let plan = &self.plan;
-        let (width, half, py) = (2 * plan.nx, plan.nx + 1, 2 * plan.ny);
+        let (width, half, py) = (plan.px, plan.px / 2 + 1, plan.py);
         let min_len = if self.lanes.len() == 1 { usize::MAX } else { 1 };
         let scratch_len = self.lanes[0].scratch.len();
         let mut spectrum_rows = vec![Complex::default(); half * rows];
@@ -422,7 +587,7 @@ impl Convolver {
     /// pads them with zeros.
     fn row_stage_forward(&mut self, field: &[f64]) {
         let plan = &self.plan;
-        let (nx, half) = (plan.nx, plan.nx + 1);
+        let (nx, half) = (plan.nx, plan.px / 2 + 1);
         let holds_data = |j: usize| field[j * nx..(j + 1) * nx].iter().any(|&v| v != 0.0);
         let first = (0..plan.ny).find(|&j| holds_data(j)).unwrap_or(plan.ny);
         let last = (first..plan.ny)
@@ -465,7 +630,7 @@ impl Convolver {
     /// first `ny` rows go to the lane's slab, row-major.
     fn column_stage(&mut self, work: ColumnWork<'_>) {
         let plan = &self.plan;
-        let (ny, py, half) = (plan.ny, 2 * plan.ny, plan.nx + 1);
+        let (ny, py, half) = (plan.ny, plan.py, plan.px / 2 + 1);
         let lanes = self.lanes.len();
         let per_lane = half.div_ceil(lanes);
         let block_columns = plan.block_columns();
@@ -563,8 +728,9 @@ impl Convolver {
                 }
                 // The first and last bins of a real signal's spectrum are real;
                 // drop the rounding residue so realfft accepts them.
+                let last = lane.row.len() - 1;
                 lane.row[0].im = 0.0;
-                lane.row[nx].im = 0.0;
+                lane.row[last].im = 0.0;
                 plan.row_inverse
                     .process_with_scratch(&mut lane.row, &mut lane.real, &mut lane.scratch)
                     .expect("row FFT lengths are fixed by the plan");
@@ -661,7 +827,8 @@ mod tests {
         assert_eq!(full.self_coefficient(), half.self_coefficient());
         // The even spectrum is the real part of the full one on its stored rows, and
         // its products equal the full spectrum's and the direct sum's.
-        let (SpectrumValues::General(f), SpectrumValues::Even(e)) = (&full.values, &half.values)
+        let (SpectrumValues::General(f), SpectrumValues::Even { values: e, .. }) =
+            (&full.values, &half.values)
         else {
             panic!("a general and an even spectrum")
         };
@@ -688,6 +855,98 @@ mod tests {
                 (a[k] - b[k]).abs() < 1e-13 && (b[k] - d[k]).abs() < 1e-13,
                 "{k}"
             );
+        }
+    }
+
+    /// An even kernel with a slow decay, so that aliasing across a too-short
+    /// padding shows up.
+    fn even_slow(di: i64, dj: i64) -> f64 {
+        1.0 / (0.5 + ((di * di) as f64 + 1.7 * (dj * dj) as f64).sqrt())
+    }
+
+    #[test]
+    fn needed_padding_is_twice_the_farthest_reach() {
+        // Data everywhere: offsets up to n - 1 either way.
+        assert_eq!(needed_padding(10, (0, 10)), 18);
+        // Centred data in 3..7 of 10 cells: output cell 9 is 6 from data cell 3.
+        assert_eq!(needed_padding(10, (3, 7)), 12);
+        // One data cell in the middle: the output must still fit.
+        assert_eq!(needed_padding(10, (5, 6)), 10);
+        // Data at one edge reach the far edge.
+        assert_eq!(needed_padding(9, (0, 2)), 16);
+        assert_eq!(quick_padding(1669, 1024), 1792);
+        assert_eq!(quick_padding(1500, 1024), 1536);
+        assert_eq!(quick_padding(2047, 1024), 2048);
+        assert_eq!(quick_padding(130, 64), 128);
+    }
+
+    #[test]
+    fn a_trimmed_padding_equals_direct_summation_on_the_data_it_holds() {
+        // (nx, ny, columns, rows) of the data.
+        let cases = [
+            (16, 16, (4, 12), (5, 11)),
+            (21, 13, (2, 9), (6, 13)),
+            (12, 19, (0, 12), (8, 9)),
+            (15, 15, (7, 8), (7, 8)),
+            (20, 11, (0, 3), (0, 11)),
+        ];
+        for (nx, ny, columns, rows) in cases {
+            let support = Support { columns, rows };
+            let quadrant: Vec<f64> = (0..nx * ny)
+                .map(|k| even_slow((k % nx) as i64, (k / nx) as i64))
+                .collect();
+            let full = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
+            let kernel = full.even_kernel_spectrum(&quadrant);
+            let field: Vec<f64> = (0..nx * ny)
+                .map(|k| {
+                    let (i, j) = (k % nx, k / nx);
+                    let inside =
+                        (columns.0..columns.1).contains(&i) && (rows.0..rows.1).contains(&j);
+                    if inside {
+                        ((k * 37) % 11) as f64 - 4.0
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            assert_eq!(
+                Support::of(&field, nx, ny).map(|s| s.rows.0 >= rows.0),
+                Some(true)
+            );
+            let mut direct = vec![0.0; nx * ny];
+            direct_convolution(nx, ny, even_slow, &field, &mut direct);
+            let scale = direct.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let error = |px: usize, py: usize, par: Parallelism| {
+                let plan = ConvolutionPlan::padded(nx, ny, [px, py], par);
+                let spectrum = plan.respectrum(&kernel);
+                let mut out = vec![0.0; nx * ny];
+                plan.convolver().apply(&spectrum, &field, &mut out);
+                out.iter()
+                    .zip(&direct)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / scale))
+            };
+            let (px, py) = (needed_padding(nx, columns), needed_padding(ny, rows));
+            let plan = ConvolutionPlan::padded(nx, ny, [px, py], Parallelism::Sequential);
+            assert!(plan.holds(&support));
+            for par in [Parallelism::Sequential, Parallelism::Rayon] {
+                assert!(error(px, py, par) < 1e-13, "{nx}x{ny} {support:?} {par:?}");
+                let (qx, qy) = (quick_padding(px, nx), quick_padding(py, ny));
+                assert!(error(qx, qy, par) < 1e-13, "{nx}x{ny} quick {qx}x{qy}");
+            }
+            // One step shorter along an axis that was trimmed aliases: the bound is
+            // tight, not just safe.
+            if px - 2 >= nx {
+                assert!(
+                    error(px - 2, 2 * ny, Parallelism::Sequential) > 1e-6,
+                    "{nx}x{ny} x"
+                );
+            }
+            if py - 2 >= ny {
+                assert!(
+                    error(2 * nx, py - 2, Parallelism::Sequential) > 1e-6,
+                    "{nx}x{ny} y"
+                );
+            }
         }
     }
 

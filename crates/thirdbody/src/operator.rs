@@ -2,11 +2,15 @@
 //! normal surface displacement of the body for a cell-wise constant pressure
 //! (paper eq. 7's `A^(1)` part). Solvers take anything that applies `K` so that tests
 //! can drive them with a small dense matrix (style: argmin's problem trait, faer's
-//! `LinOp`); production uses the DC-FFT convolution.
+//! `LinOp`); production uses the DC-FFT convolution, on a wrap-around grid trimmed
+//! to the pressure's support when that is markedly smaller than the full `2n`
+//! padding (the contact in a window with margins).
 
 use std::sync::Arc;
 
-use crate::convolution::{Convolver, KernelSpectrum};
+use crate::convolution::{
+    needed_padding, quick_padding, ConvolutionPlan, Convolver, KernelSpectrum, Support,
+};
 
 /// Something that applies the body's influence matrix.
 pub trait InfluenceOperator {
@@ -30,8 +34,26 @@ pub trait InfluenceOperator {
 pub struct ConvolutionOperator {
     convolver: Convolver,
     kernel: Arc<KernelSpectrum>,
+    /// The DC-FFT on a padding trimmed to the supports seen so far, and the kernel's
+    /// spectrum there (built by this operator from the kernel's quadrant).
+    trimmed: Option<(Convolver, KernelSpectrum)>,
+    /// Trimmed paddings planned so far (at most [`MAX_TRIMMED_PLANS`]).
+    trimmed_plans: usize,
     products: usize,
 }
+
+/// Grids with fewer cells always use the full padding: planning a trimmed one and
+/// its kernel spectrum costs more than it saves there.
+const TRIM_MIN_CELLS: usize = 64 * 64;
+/// A trimmed padding is planned only if it has at most this share of the full
+/// padding's cells.
+const TRIM_MAX_SHARE: f64 = 0.8;
+/// Cells added around a support before planning for it, as a share of the grid, so
+/// that a contact that grows a little keeps its padding.
+const TRIM_MARGIN_SHARE: usize = 32;
+/// Trimmed paddings one operator plans at most (a contact that keeps outgrowing
+/// its padding falls back to the full one).
+const MAX_TRIMMED_PLANS: usize = 3;
 
 impl ConvolutionOperator {
     /// Pairs a scratch with a kernel spectrum built on the same plan.
@@ -39,7 +61,36 @@ impl ConvolutionOperator {
         ConvolutionOperator {
             convolver,
             kernel,
+            trimmed: None,
+            trimmed_plans: 0,
             products: 0,
+        }
+    }
+
+    /// The trimmed DC-FFT for a field with `support`, planned now if none held
+    /// fits and one is worth planning.
+    fn trimmed_for(&mut self, support: &Support) -> Option<&mut (Convolver, KernelSpectrum)> {
+        let fits = |t: &Option<(Convolver, KernelSpectrum)>| {
+            t.as_ref().is_some_and(|(c, _)| c.plan().holds(support))
+        };
+        if !fits(&self.trimmed) && self.trimmed_plans < MAX_TRIMMED_PLANS {
+            self.trimmed_plans += 1;
+            let full = self.convolver.plan();
+            let (nx, ny) = (full.nx(), full.ny());
+            let margin = (nx.max(ny) / TRIM_MARGIN_SHARE).max(2);
+            let wide = support.widened(margin, nx, ny);
+            let px = quick_padding(needed_padding(nx, wide.columns), nx);
+            let py = quick_padding(needed_padding(ny, wide.rows), ny);
+            self.trimmed = ((px * py) as f64 <= TRIM_MAX_SHARE * (4 * nx * ny) as f64).then(|| {
+                let plan = ConvolutionPlan::padded(nx, ny, [px, py], full.parallelism());
+                let spectrum = plan.respectrum(&self.kernel);
+                (plan.convolver(), spectrum)
+            });
+        }
+        if fits(&self.trimmed) {
+            self.trimmed.as_mut()
+        } else {
+            None
         }
     }
 }
@@ -52,8 +103,17 @@ impl InfluenceOperator for ConvolutionOperator {
         self.kernel.self_coefficient()
     }
     fn apply(&mut self, p: &[f64], w: &mut [f64]) {
-        self.convolver.apply(&self.kernel, p, w);
         self.products += 1;
+        let (nx, ny) = (self.convolver.plan().nx(), self.convolver.plan().ny());
+        if nx * ny >= TRIM_MIN_CELLS && self.kernel.is_even() {
+            if let Some(support) = Support::of(p, nx, ny) {
+                if let Some((convolver, spectrum)) = self.trimmed_for(&support) {
+                    convolver.apply(spectrum, p, w);
+                    return;
+                }
+            }
+        }
+        self.convolver.apply(&self.kernel, p, w);
     }
     fn products(&self) -> usize {
         self.products
@@ -97,5 +157,47 @@ impl InfluenceOperator for DenseOperator {
             let row = &self.values[i * self.n..(i + 1) * self.n];
             *wi = row.iter().zip(p).map(|(a, b)| a * b).sum();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::convolution::Parallelism;
+
+    #[test]
+    fn the_operator_trims_for_a_small_support_and_gives_the_full_padding_result() {
+        let (nx, ny) = (96, 80);
+        let kernel = |di: i64, dj: i64| 1.0 / (0.5 + ((di * di + dj * dj) as f64).sqrt());
+        let quadrant: Vec<f64> = (0..nx * ny)
+            .map(|k| kernel((k % nx) as i64, (k / nx) as i64))
+            .collect();
+        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
+        let spectrum = Arc::new(plan.even_kernel_spectrum(&quadrant));
+        let mut op = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum));
+        let mut reference = plan.convolver();
+        // A disc of data in the middle, then a wider one, then the whole grid.
+        for radius in [20.0, 30.0, 200.0] {
+            let field: Vec<f64> = (0..nx * ny)
+                .map(|k| {
+                    let (x, y) = ((k % nx) as f64 - 47.5, (k / nx) as f64 - 39.5);
+                    let r2 = (x * x + y * y) / (radius * radius);
+                    (1.0 - r2).max(0.0).sqrt()
+                })
+                .collect();
+            let (mut fast, mut full) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+            op.apply(&field, &mut fast);
+            reference.apply(&spectrum, &field, &mut full);
+            let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (a, b) in fast.iter().zip(&full) {
+                assert!((a - b).abs() < 1e-13 * scale, "radius {radius}");
+            }
+            let trimmed = op.trimmed.as_ref().map(|(c, _)| c.plan().padding());
+            if radius == 20.0 {
+                // 96 cells, data from 27 to 68 widened by 3: 2 x 71 = 142 -> 160.
+                assert_eq!(trimmed, Some([160, 128]), "radius {radius}");
+            }
+        }
+        assert_eq!(op.products(), 3);
     }
 }
