@@ -254,27 +254,70 @@ impl ConvolutionPlan {
         self.ny
     }
 
-    /// Scratch for one thread of work.
-    pub fn convolver(self: &Arc<Self>) -> Convolver {
-        let lanes = self.lanes();
-        let scratch_len = self
-            .row_forward
+    /// Full forward transform of a padded `px x rows` real array (rows beyond
+    /// `rows` are zero); returns the column-major spectrum. Rows, then columns, are
+    /// split over the pool like the other stages.
+    fn forward_padded(&self, padded: &[f64], rows: usize) -> Vec<Complex<f64>> {
+        let plan = self;
+        let (width, half, py) = (plan.px, plan.px / 2 + 1, plan.py);
+        let min_len = if self.lanes() == 1 { usize::MAX } else { 1 };
+        let scratch_len = self.scratch_len();
+        let mut spectrum_rows = vec![Complex::default(); half * rows];
+        spectrum_rows
+            .par_chunks_mut(half)
+            .zip(padded.par_chunks(width))
+            .with_min_len(min_len)
+            .for_each_init(
+                || (vec![0.0; width], vec![Complex::default(); scratch_len]),
+                |(real, scratch), (dst, src)| {
+                    real.copy_from_slice(src);
+                    plan.row_forward
+                        .process_with_scratch(real, dst, scratch)
+                        .expect("row FFT lengths are fixed by the plan");
+                },
+            );
+        let mut columns = vec![Complex::default(); half * py];
+        columns
+            .par_chunks_mut(py)
+            .enumerate()
+            .with_min_len(min_len)
+            .for_each_init(
+                || vec![Complex::default(); scratch_len],
+                |scratch, (c, col)| {
+                    for (r, v) in col[..rows].iter_mut().enumerate() {
+                        *v = spectrum_rows[r * half + c];
+                    }
+                    plan.column_forward.process_with_scratch(col, scratch);
+                },
+            );
+        columns
+    }
+
+    /// Scratch an FFT of this plan needs.
+    fn scratch_len(&self) -> usize {
+        self.row_forward
             .get_scratch_len()
             .max(self.row_inverse.get_scratch_len())
             .max(self.column_forward.get_inplace_scratch_len())
-            .max(self.column_inverse.get_inplace_scratch_len());
+            .max(self.column_inverse.get_inplace_scratch_len())
+    }
+
+    /// Scratch for one thread of work.
+    pub fn convolver(self: &Arc<Self>) -> Convolver {
+        let lanes = self.lanes();
+        let scratch_len = self.scratch_len();
         let (half, py) = (self.px / 2 + 1, self.py);
         let per_lane = half.div_ceil(lanes);
         Convolver {
             plan: Arc::clone(self),
-            rows: vec![Complex::default(); half * self.ny],
+            rows: zeroed(half * self.ny, lanes > 1),
             data_rows: (0, self.ny),
             columns: Vec::new(),
             field_spectrum: Vec::new(),
             slabs: (0..lanes)
                 .map(|t| {
                     let width = half.saturating_sub(t * per_lane).min(per_lane);
-                    vec![Complex::default(); width * self.ny]
+                    zeroed(width * self.ny, lanes > 1)
                 })
                 .collect(),
             lanes: (0..lanes)
@@ -367,8 +410,8 @@ impl ConvolutionPlan {
         // of the first py/2 + 1 rows (the imaginary parts are rounding residue).
         let hy = py / 2 + 1;
         let even: Vec<f64> = values
-            .chunks_exact(py)
-            .flat_map(|col| col[..hy].iter().map(|v| v.re))
+            .par_chunks_exact(py)
+            .flat_map_iter(|col| col[..hy].iter().map(|v| v.re))
             .collect();
         KernelSpectrum {
             values: SpectrumValues::Even {
@@ -382,15 +425,15 @@ impl ConvolutionPlan {
     fn spectrum_of_wrapped(self: &Arc<Self>, wrapped: Vec<f64>) -> KernelSpectrum {
         let (nx, ny, px, py) = (self.nx, self.ny, self.px, self.py);
         let self_coefficient = wrapped[0];
-        let mut conv = self.convolver();
-        let values = conv.forward_padded(&wrapped, py);
+        let mut values = self.forward_padded(&wrapped, py);
         let scale = 1.0 / (px * py) as f64;
+        values.par_iter_mut().for_each(|v| *v *= scale);
         KernelSpectrum {
             nx,
             ny,
             px,
             py,
-            values: SpectrumValues::General(values.into_iter().map(|v| v * scale).collect()),
+            values: SpectrumValues::General(values),
             self_coefficient,
         }
     }
@@ -473,6 +516,18 @@ pub fn quick_padding(needed: usize, n: usize) -> usize {
     quick.min(2 * n)
 }
 
+/// A zeroed buffer of `n` values, written by the pool's threads when `parallel`:
+/// the first touch of fresh pages is much of a large convolver's set-up.
+fn zeroed(n: usize, parallel: bool) -> Vec<Complex<f64>> {
+    if parallel {
+        let mut v = Vec::with_capacity(n);
+        v.par_extend(rayon::iter::repeat_n(Complex::default(), n));
+        v
+    } else {
+        vec![Complex::default(); n]
+    }
+}
+
 /// Offset in cells of index `k` of a wrap-around axis of `p` (even) entries for `n`
 /// cells: `k` up to `p/2`, then `k - p`; `None` where no pair of cells is that far
 /// apart (offset `n` and beyond), which stays zero. On the full padding (`p = 2n`)
@@ -540,45 +595,6 @@ impl Convolver {
         let cells = plan.nx * plan.ny;
         assert_eq!(field, cells, "field size does not match the plan");
         assert_eq!(out, cells, "output size does not match the plan");
-    }
-
-    /// Full forward transform of a padded `(2nx) x rows` real array (rows beyond
-    /// `rows` are zero); returns the column-major spectrum. Rows, then columns, are
-    /// split over the pool like the other stages.
-    fn forward_padded(&mut self, padded: &[f64], rows: usize) -> Vec<Complex<f64>> {
-        let plan = &self.plan;
-        let (width, half, py) = (plan.px, plan.px / 2 + 1, plan.py);
-        let min_len = if self.lanes.len() == 1 { usize::MAX } else { 1 };
-        let scratch_len = self.lanes[0].scratch.len();
-        let mut spectrum_rows = vec![Complex::default(); half * rows];
-        spectrum_rows
-            .par_chunks_mut(half)
-            .zip(padded.par_chunks(width))
-            .with_min_len(min_len)
-            .for_each_init(
-                || (vec![0.0; width], vec![Complex::default(); scratch_len]),
-                |(real, scratch), (dst, src)| {
-                    real.copy_from_slice(src);
-                    plan.row_forward
-                        .process_with_scratch(real, dst, scratch)
-                        .expect("row FFT lengths are fixed by the plan");
-                },
-            );
-        let mut columns = vec![Complex::default(); half * py];
-        columns
-            .par_chunks_mut(py)
-            .enumerate()
-            .with_min_len(min_len)
-            .for_each_init(
-                || vec![Complex::default(); scratch_len],
-                |scratch, (c, col)| {
-                    for (r, v) in col[..rows].iter_mut().enumerate() {
-                        *v = spectrum_rows[r * half + c];
-                    }
-                    plan.column_forward.process_with_scratch(col, scratch);
-                },
-            );
-        columns
     }
 
     /// Real-to-complex transforms of the field's rows, zero-padded to `2 nx`. Rows

@@ -166,43 +166,50 @@ impl Slider {
             Slider::HeightMap(m) => m.heights.iter().copied().fold(f64::INFINITY, f64::min),
             _ => 0.0,
         };
-        for j in 0..grid.ny {
-            let y = grid.y(j);
-            for i in 0..grid.nx {
-                let x = grid.x(i);
-                let k = grid.index(i, j);
-                let (fv, dv) = match self {
-                    Slider::Sphere { radius } => ((x * x + y * y) / (2.0 * radius), x / radius),
-                    Slider::Ellipsoid { radius_x, radius_y } => (
-                        x * x / (2.0 * radius_x) + y * y / (2.0 * radius_y),
-                        x / radius_x,
-                    ),
-                    Slider::HeightMap(m) => match (m.height(x, y), m.mean_x_slope(x, y, grid.cell))
-                    {
-                        (Some(fv), Some(dv)) => (fv - min_height, dv),
-                        _ => {
-                            let [ex, ey] = m.half_extent();
-                            let [wx, wy] = grid.half_widths();
-                            let c = grid.centre();
-                            return Err(Error::invalid(
-                                "grid",
-                                format!(
+        use rayon::prelude::*;
+        // Rows in parallel; every value is computed alone, so the bits do not
+        // depend on the thread count.
+        let rows = f.par_chunks_mut(grid.nx).zip(dfdx.par_chunks_mut(grid.nx));
+        rows.enumerate()
+            .with_min_len(16)
+            .try_for_each(|(j, (frow, drow))| {
+                let y = grid.y(j);
+                for i in 0..grid.nx {
+                    let x = grid.x(i);
+                    let (fv, dv) = match self {
+                        Slider::Sphere { radius } => ((x * x + y * y) / (2.0 * radius), x / radius),
+                        Slider::Ellipsoid { radius_x, radius_y } => (
+                            x * x / (2.0 * radius_x) + y * y / (2.0 * radius_y),
+                            x / radius_x,
+                        ),
+                        Slider::HeightMap(m) => {
+                            match (m.height(x, y), m.mean_x_slope(x, y, grid.cell)) {
+                                (Some(fv), Some(dv)) => (fv - min_height, dv),
+                                _ => {
+                                    let [ex, ey] = m.half_extent();
+                                    let [wx, wy] = grid.half_widths();
+                                    let c = grid.centre();
+                                    return Err(Error::invalid(
+                                        "grid",
+                                        format!(
                                     "a window of half widths {wx:.4e} x {wy:.4e} centred at \
                                      ({:.4e}, {:.4e})",
                                     c[0], c[1]
                                 ),
-                                &format!(
+                                        &format!(
                                     "a window inside the height map (half extents {ex:.4e} x \
                                      {ey:.4e}); give a larger map or a smaller grid.half_width"
                                 ),
-                            ));
+                                    ));
+                                }
+                            }
                         }
-                    },
-                };
-                f[k] = fv;
-                dfdx[k] = dv;
-            }
-        }
+                    };
+                    frow[i] = fv;
+                    drow[i] = dv;
+                }
+                Ok(())
+            })?;
         Ok(())
     }
 }

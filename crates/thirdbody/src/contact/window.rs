@@ -189,21 +189,25 @@ pub(crate) fn check_resolution(solution: &Solution) -> Result<()> {
 
 /// Bilinear interpolation of a cell field from one grid to another (zero outside).
 pub(crate) fn interpolate(old: &Grid, field: &[f64], new: &Grid) -> Vec<f64> {
+    use rayon::prelude::*;
     let mut out = vec![0.0; new.len()];
-    for j in 0..new.ny {
-        let v = (new.y(j) - old.y0) / old.cell - 0.5;
-        for i in 0..new.nx {
-            let u = (new.x(i) - old.x0) / old.cell - 0.5;
-            if u < 0.0 || v < 0.0 || u > (old.nx - 1) as f64 || v > (old.ny - 1) as f64 {
-                continue;
+    out.par_chunks_mut(new.nx)
+        .enumerate()
+        .with_min_len(16)
+        .for_each(|(j, row)| {
+            let v = (new.y(j) - old.y0) / old.cell - 0.5;
+            for (i, o) in row.iter_mut().enumerate() {
+                let u = (new.x(i) - old.x0) / old.cell - 0.5;
+                if u < 0.0 || v < 0.0 || u > (old.nx - 1) as f64 || v > (old.ny - 1) as f64 {
+                    continue;
+                }
+                let (i0, j0) = ((u as usize).min(old.nx - 2), (v as usize).min(old.ny - 2));
+                let (s, t) = (u - i0 as f64, v - j0 as f64);
+                let at = |a: usize, b: usize| field[old.index(a, b)];
+                *o = (1.0 - t) * ((1.0 - s) * at(i0, j0) + s * at(i0 + 1, j0))
+                    + t * ((1.0 - s) * at(i0, j0 + 1) + s * at(i0 + 1, j0 + 1));
             }
-            let (i0, j0) = ((u as usize).min(old.nx - 2), (v as usize).min(old.ny - 2));
-            let (s, t) = (u - i0 as f64, v - j0 as f64);
-            let at = |a: usize, b: usize| field[old.index(a, b)];
-            out[new.index(i, j)] = (1.0 - t) * ((1.0 - s) * at(i0, j0) + s * at(i0 + 1, j0))
-                + t * ((1.0 - s) * at(i0, j0 + 1) + s * at(i0 + 1, j0 + 1));
-        }
-    }
+        });
     out
 }
 

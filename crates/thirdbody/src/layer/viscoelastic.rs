@@ -249,23 +249,28 @@ impl ViscoelasticRows {
     /// integration over each cell in the module docs; the branches' relaxation
     /// downstream of the window is included. Zero for an infinite velocity.
     pub fn dissipated_force(&self, p: &[f64]) -> f64 {
-        let mut total = 0.0;
-        let mut state = vec![0.0; self.branches.len()];
-        for prow in p.chunks_exact(self.nx) {
-            state.fill(0.0);
-            let mut row = 0.0;
-            for i in (0..self.nx).rev() {
-                let ((f, _), (q, _)) = self.forcing_and_creep(prow[i]);
-                let mut moved = self.flow_per_cell * q;
-                for (b, e) in self.branches.iter().zip(state.iter_mut()) {
-                    let out = b.keep_full * *e + b.take_full * b.scale * f;
-                    moved += out - *e;
-                    *e = out;
+        // Rows in parallel, their sums added in row order (the same bits on any
+        // number of threads).
+        let rows: Vec<f64> = p
+            .par_chunks(self.nx)
+            .with_min_len(self.passes.min_rows(self.nx))
+            .map(|prow| {
+                let mut state = vec![0.0; self.branches.len()];
+                let mut row = 0.0;
+                for i in (0..self.nx).rev() {
+                    let ((f, _), (q, _)) = self.forcing_and_creep(prow[i]);
+                    let mut moved = self.flow_per_cell * q;
+                    for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                        let out = b.keep_full * *e + b.take_full * b.scale * f;
+                        moved += out - *e;
+                        *e = out;
+                    }
+                    row += prow[i] * moved;
                 }
-                row += prow[i] * moved;
-            }
-            total += row;
-        }
+                row
+            })
+            .collect();
+        let total: f64 = rows.iter().fold(0.0, |t, r| t + r);
         // Each cell's term is the energy per unit area dissipated while material
         // crosses it; a row of width h carries h V of area per unit time.
         total * self.cell
@@ -514,7 +519,8 @@ impl LayerResponse for ViscoelasticRows {
             .branches
             .iter()
             .fold(self.glassy_scale, |s, b| s + b.scale);
-        p.iter()
+        p.par_iter()
+            .with_min_len(self.passes.min_cells())
             .map(|&v| scale * self.layer.law.at(self.reference, v).compliance)
             .collect()
     }
