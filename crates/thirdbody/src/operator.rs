@@ -74,18 +74,20 @@ impl ConvolutionOperator {
             t.as_ref().is_some_and(|(c, _)| c.plan().holds(support))
         };
         if !fits(&self.trimmed) && self.trimmed_plans < MAX_TRIMMED_PLANS {
-            self.trimmed_plans += 1;
             let full = self.convolver.plan();
             let (nx, ny) = (full.nx(), full.ny());
             let margin = (nx.max(ny) / TRIM_MARGIN_SHARE).max(2);
             let wide = support.widened(margin, nx, ny);
             let px = quick_padding(needed_padding(nx, wide.columns), nx);
             let py = quick_padding(needed_padding(ny, wide.rows), ny);
-            self.trimmed = ((px * py) as f64 <= TRIM_MAX_SHARE * (4 * nx * ny) as f64).then(|| {
+            // A support too wide to gain from trimming keeps the trimmed padding
+            // held for the others.
+            if (px * py) as f64 <= TRIM_MAX_SHARE * (4 * nx * ny) as f64 {
                 let plan = ConvolutionPlan::padded(nx, ny, [px, py], full.parallelism());
                 let spectrum = plan.respectrum(&self.kernel);
-                (plan.convolver(), spectrum)
-            });
+                self.trimmed = Some((plan.convolver(), spectrum));
+                self.trimmed_plans += 1;
+            }
         }
         if fits(&self.trimmed) {
             self.trimmed.as_mut()
@@ -176,8 +178,9 @@ mod tests {
         let spectrum = Arc::new(plan.even_kernel_spectrum(&quadrant));
         let mut op = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum));
         let mut reference = plan.convolver();
-        // A disc of data in the middle, then a wider one, then the whole grid.
-        for radius in [20.0, 30.0, 200.0] {
+        // A disc of data in the middle, then a wider one, the whole grid, and the
+        // first disc again.
+        for radius in [20.0, 30.0, 200.0, 20.0] {
             let field: Vec<f64> = (0..nx * ny)
                 .map(|k| {
                     let (x, y) = ((k % nx) as f64 - 47.5, (k / nx) as f64 - 39.5);
@@ -198,6 +201,9 @@ mod tests {
                 assert_eq!(trimmed, Some([160, 128]), "radius {radius}");
             }
         }
-        assert_eq!(op.products(), 3);
+        // The wide supports were not worth a padding of their own and did not drop
+        // the one planned for the disc, which served it again.
+        assert_eq!(op.trimmed_plans, 1);
+        assert_eq!(op.products(), 4);
     }
 }
