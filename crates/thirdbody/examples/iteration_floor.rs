@@ -7,10 +7,12 @@
 //! transpose, rustfft columns): the zero-padded `2nx x 2ny` convolution of an
 //! `nx x ny` field that transforms only the `ny` rows holding data, keeps only the
 //! `ny` output rows that are needed, and does nothing else. The machine is shared
-//! and its speed drifts over seconds, so the floor is timed (median of a few) just
-//! before each one-thread solve, and `it/fl` is the median over the solves of each
-//! solve's time per iteration over its floor. `conv ms` is the library's own
-//! full-padding convolution on one thread. Every other time is a median of repeats.
+//! and its speed drifts over seconds, so each repeat is a round of the floor (median
+//! of a few), a one-thread solve and an N-thread solve; `it/fl` is the median over
+//! the rounds of the solve's time per iteration over the round's floor, `speedup`
+//! the median of the rounds' one-thread over N-thread times. `conv ms` is the
+//! library's own full-padding convolution on one thread. Every other time is a
+//! median of the rounds.
 //!
 //! Run: `cargo run --release -p thirdbody --example iteration_floor -- [--sizes 256,512]
 //! [--threads N] [--cases hertz,fig3] [--repeats R] [--convolution-only]`
@@ -198,49 +200,50 @@ fn floor_repeats(n: usize) -> usize {
     (30_000_000 / (n * n * 30)).clamp(3, 51)
 }
 
-struct Run {
-    seconds: f64,
-    /// The floor's median and the median of the per-solve ratios.
-    floor: Option<(f64, f64)>,
-    solution: Solution,
-}
-
-/// Solves `case` `repeats` times on `threads` threads; with `floor`, times the
-/// minimal convolution just before each solve and keeps the ratio of the solve's
-/// time per iteration to it.
-fn solve_on(
-    threads: usize,
-    case: &Case,
-    repeats: usize,
-    mut floor: Option<&mut Convolutions>,
-) -> Run {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .expect("thread pool");
+/// `repeats` rounds of: the minimal convolution (median of a few), a solve of
+/// `case` on one thread, the same solve on `threads` threads. The machine is shared
+/// and its speed drifts over seconds, so each ratio is formed within a round and
+/// their medians are reported.
+fn rounds(threads: usize, case: &Case, repeats: usize, floor: &mut Convolutions) -> Rounds {
+    let pools: Vec<rayon::ThreadPool> = [1, threads]
+        .iter()
+        .map(|&t| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .expect("thread pool")
+        })
+        .collect();
     let params = SolverParams::default();
     let n = case.grid.cells[0];
-    let (mut times, mut floors, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
-    let mut solution = None;
+    let mut r = Rounds::default();
     for _ in 0..repeats {
-        let f = floor
-            .as_deref_mut()
-            .map(|c| c.floor_seconds(floor_repeats(n)));
-        let t = Instant::now();
-        let s = pool.install(|| solve(case, &params)).expect("solve");
-        let seconds = t.elapsed().as_secs_f64();
-        times.push(seconds);
-        if let Some(f) = f {
-            floors.push(f);
-            ratios.push(seconds / s.info.iterations as f64 / f);
-        }
-        solution = Some(s);
+        let f = floor.floor_seconds(floor_repeats(n));
+        let mut timed = pools.iter().map(|pool| {
+            let t = Instant::now();
+            let s = pool.install(|| solve(case, &params)).expect("solve");
+            (t.elapsed().as_secs_f64(), s)
+        });
+        let (one, s1) = timed.next().expect("one thread");
+        let (many, sn) = timed.next().expect("n threads");
+        r.floors.push(f);
+        r.over_floor.push(one / s1.info.iterations as f64 / f);
+        r.speed_ups.push(one / many);
+        r.one.push(one);
+        r.many.push(many);
+        r.solutions = Some((s1, sn));
     }
-    Run {
-        seconds: median(times),
-        floor: (!floors.is_empty()).then(|| (median(floors), median(ratios))),
-        solution: solution.unwrap(),
-    }
+    r
+}
+
+#[derive(Default)]
+struct Rounds {
+    one: Vec<f64>,
+    many: Vec<f64>,
+    floors: Vec<f64>,
+    over_floor: Vec<f64>,
+    speed_ups: Vec<f64>,
+    solutions: Option<(Solution, Solution)>,
 }
 
 fn max_relative_difference(a: &[f64], b: &[f64]) -> f64 {
@@ -329,28 +332,32 @@ fn main() {
             });
             let mut convolutions = Convolutions::new(n);
             let library = convolutions.library_seconds(floor_repeats(n));
-            let one = solve_on(1, &case, repeats, Some(&mut convolutions));
-            let many = solve_on(threads, &case, repeats, None);
-            let (floor, iteration_over_floor) = one.floor.expect("timed with the floor");
-            let products = one.solution.info.operator_products;
-            let per_product = one.seconds / products as f64;
-            let per_iteration = one.seconds / one.solution.info.iterations as f64;
+            let r = rounds(threads, &case, repeats, &mut convolutions);
+            let (s1, sn) = r.solutions.as_ref().expect("at least one round");
+            let (one, many, floor) = (
+                median(r.one.clone()),
+                median(r.many.clone()),
+                median(r.floors.clone()),
+            );
+            let products = s1.info.operator_products;
+            let per_product = one / products as f64;
+            let per_iteration = one / s1.info.iterations as f64;
             println!(
                 "{:<6} {:>5} {:>5} {:>8} {:>10.2} {:>10.2} {:>10.2} {:>8.2} {:>6.2} {:>6.2} {:>9.3} {:>9.3} {:>7.2} {:>9.1e}",
                 name,
                 n,
-                one.solution.info.iterations,
+                s1.info.iterations,
                 products,
                 per_iteration * 1e3,
                 per_product * 1e3,
                 floor * 1e3,
                 library * 1e3,
-                iteration_over_floor,
+                median(r.over_floor.clone()),
                 per_product / floor,
-                one.seconds,
-                many.seconds,
-                one.seconds / many.seconds,
-                max_relative_difference(&one.solution.pressure, &many.solution.pressure),
+                one,
+                many,
+                median(r.speed_ups.clone()),
+                max_relative_difference(&s1.pressure, &sn.pressure),
             );
         }
     }
