@@ -298,6 +298,26 @@ fn main() {
         }
         return;
     }
+    // What two cores give this machine now: the library's one-thread convolution
+    // alone, and two of them at once on two threads (their own data). On a shared
+    // host two vCPUs can share a core or its memory bandwidth; then no solve gets
+    // 2x from a second thread, and this line says by how much less.
+    for &n in &sizes {
+        let alone = Convolutions::new(n).library_seconds(15);
+        let both: Vec<f64> = std::thread::scope(|scope| {
+            let runs: Vec<_> = (0..2)
+                .map(|_| scope.spawn(move || Convolutions::new(n).library_seconds(15)))
+                .collect();
+            runs.into_iter().map(|r| r.join().expect("thread")).collect()
+        });
+        let together = both.iter().sum::<f64>() / 2.0;
+        println!(
+            "{n:>5}: one-thread convolution alone {:.3} ms, two at once {:.3} ms each: two cores give {:.2}x one",
+            alone * 1e3,
+            together * 1e3,
+            2.0 * alone / together
+        );
+    }
     println!(
         "{:<6} {:>5} {:>5} {:>8} {:>10} {:>10} {:>10} {:>8} {:>6} {:>6} {:>9} {:>9} {:>7} {:>9}",
         "case",

@@ -29,7 +29,7 @@ pub enum Parallelism {
 }
 
 /// FFT plans for the DC-FFT of one grid size, on a wrap-around grid of `px x py`
-/// (`2nx x 2ny` unless trimmed to a field's support, see [`PaddedSize`]).
+/// (`2nx x 2ny` unless trimmed to a field's support, see [`needed_padding`]).
 pub struct ConvolutionPlan {
     nx: usize,
     ny: usize,
@@ -187,7 +187,7 @@ impl ConvolutionPlan {
 
     /// Plans the DC-FFT for fields of `nx x ny` cells on a `px x py` wrap-around
     /// grid (even sizes, `n <= p <= 2n`): exact for fields whose support the padding
-    /// [`PaddedSize::holds`], with even kernels only.
+    /// [`holds`](Self::holds), with even kernels only.
     pub fn padded(
         nx: usize,
         ny: usize,

@@ -1,7 +1,8 @@
 //! Vector passes of the iterative solvers split over threads with results that do
 //! not depend on the thread count: a field is cut into fixed chunks of [`CHUNK`]
-//! cells, each chunk's partial sums are formed in cell order, and the partials are
-//! added in chunk order. One thread or many give the same bits, so a solve's
+//! cells, each chunk's partial sums are formed in a fixed order (cell order, or
+//! [`LANES`] interleaved running sums added in order, [`lane_sum`]), and the partials
+//! are added in chunk order. One thread or many give the same bits, so a solve's
 //! iterates and iteration count are identical with 1 and N threads.
 
 use rayon::prelude::*;
