@@ -308,7 +308,9 @@ fn main() {
             let runs: Vec<_> = (0..2)
                 .map(|_| scope.spawn(move || Convolutions::new(n).library_seconds(15)))
                 .collect();
-            runs.into_iter().map(|r| r.join().expect("thread")).collect()
+            runs.into_iter()
+                .map(|r| r.join().expect("thread"))
+                .collect()
         });
         let together = both.iter().sum::<f64>() / 2.0;
         println!(
