@@ -17,8 +17,9 @@ use crate::grid::Grid;
 
 /// Spectra kept by default: the windows an automatic solve tries for a few bodies.
 const DEFAULT_CAPACITY: usize = 8;
-/// Bytes of spectra kept at most: a spectrum takes 32 bytes per cell (a 1024²
-/// grid's 34 MB), so large grids keep fewer; one larger than this is not kept.
+/// Bytes of spectra kept at most: a surface kernel's real spectrum and its quadrant
+/// take about 16 bytes per cell (a 1024² grid's 17 MB), so large grids keep fewer;
+/// one larger than this is not kept.
 const DEFAULT_BYTE_BUDGET: usize = 256 << 20;
 
 /// What a surface-kernel spectrum depends on: the body, the grid size and the cell
