@@ -75,9 +75,11 @@ enum SpectrumValues {
     /// A kernel even in x and in y has a real spectrum that is even in the column
     /// frequency: `px/2 + 1` columns of its first `py/2 + 1` real values, a quarter
     /// of the memory (and of the memory traffic of each product). The kernel's
-    /// quadrant is kept to build its spectrum on trimmed paddings.
+    /// quadrant is kept to build its spectrum on other paddings; a kernel given by
+    /// its quadrant only ([`ConvolutionPlan::even_kernel`]) has no values until
+    /// [`ConvolutionPlan::respectrum`] builds them.
     Even {
-        values: Vec<f64>,
+        values: Option<Vec<f64>>,
         quadrant: Arc<Vec<f64>>,
     },
 }
@@ -88,7 +90,7 @@ impl KernelSpectrum {
         match &self.values {
             SpectrumValues::General(v) => v.len() * std::mem::size_of::<Complex<f64>>(),
             SpectrumValues::Even { values, quadrant } => {
-                (values.len() + quadrant.len()) * std::mem::size_of::<f64>()
+                (values.as_ref().map_or(0, Vec::len) + quadrant.len()) * std::mem::size_of::<f64>()
             }
         }
     }
@@ -114,6 +116,7 @@ impl KernelSpectrum {
                 }
             }
             SpectrumValues::Even { values, .. } => {
+                let values = values.as_ref().expect("checked by check_sizes");
                 for (q, col) in columns.chunks_exact_mut(py).enumerate() {
                     let k = &values[(first_column + q) * hy..][..hy];
                     if let Some(f) = field {
@@ -128,6 +131,12 @@ impl KernelSpectrum {
                 }
             }
         }
+    }
+
+    /// Whether the spectrum's values are built (a kernel given by its quadrant only
+    /// has none, see [`ConvolutionPlan::even_kernel`]).
+    pub fn has_values(&self) -> bool {
+        !matches!(self.values, SpectrumValues::Even { values: None, .. })
     }
 
     /// Whether the kernel is even in x and in y (and so can be used on a trimmed
@@ -370,6 +379,30 @@ impl ConvolutionPlan {
         self.even_spectrum_of(Arc::new(quadrant.to_vec()))
     }
 
+    /// An even kernel given by its quadrant only (as [`Self::even_kernel_spectrum`]
+    /// takes it): nothing is transformed until [`Self::respectrum`] builds its
+    /// spectrum on a padding (the same bits as building it at once). A contact
+    /// operator whose products are all on a trimmed padding never needs the full
+    /// one.
+    pub fn even_kernel(self: &Arc<Self>, quadrant: Vec<f64>) -> KernelSpectrum {
+        assert_eq!(
+            quadrant.len(),
+            self.nx * self.ny,
+            "quadrant size does not match the plan"
+        );
+        KernelSpectrum {
+            nx: self.nx,
+            ny: self.ny,
+            px: self.px,
+            py: self.py,
+            self_coefficient: quadrant[0],
+            values: SpectrumValues::Even {
+                values: None,
+                quadrant: Arc::new(quadrant),
+            },
+        }
+    }
+
     /// The spectrum on this plan's padding of the even kernel that `kernel` was
     /// built from (on a plan of the same grid).
     pub fn respectrum(self: &Arc<Self>, kernel: &KernelSpectrum) -> KernelSpectrum {
@@ -415,7 +448,7 @@ impl ConvolutionPlan {
             .collect();
         KernelSpectrum {
             values: SpectrumValues::Even {
-                values: even,
+                values: Some(even),
                 quadrant,
             },
             ..general
@@ -591,6 +624,10 @@ impl Convolver {
         assert!(
             [kernel.px, kernel.py] == [plan.px, plan.py],
             "kernel of another padding"
+        );
+        assert!(
+            kernel.has_values(),
+            "a kernel given by its quadrant only: build its spectrum with respectrum"
         );
         let cells = plan.nx * plan.ny;
         assert_eq!(field, cells, "field size does not match the plan");
@@ -843,8 +880,12 @@ mod tests {
         assert_eq!(full.self_coefficient(), half.self_coefficient());
         // The even spectrum is the real part of the full one on its stored rows, and
         // its products equal the full spectrum's and the direct sum's.
-        let (SpectrumValues::General(f), SpectrumValues::Even { values: e, .. }) =
-            (&full.values, &half.values)
+        let (
+            SpectrumValues::General(f),
+            SpectrumValues::Even {
+                values: Some(e), ..
+            },
+        ) = (&full.values, &half.values)
         else {
             panic!("a general and an even spectrum")
         };
@@ -964,6 +1005,22 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_kernel_given_by_its_quadrant_gets_the_same_spectrum_when_built() {
+        let (nx, ny) = (13, 9);
+        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
+        let quadrant: Vec<f64> = (0..nx * ny)
+            .map(|k| even_slow((k % nx) as i64, (k / nx) as i64))
+            .collect();
+        let eager = plan.even_kernel_spectrum(&quadrant);
+        let lazy = plan.even_kernel(quadrant);
+        assert!(!lazy.has_values() && eager.has_values());
+        assert_eq!(lazy.self_coefficient(), eager.self_coefficient());
+        assert!(lazy.bytes() < eager.bytes());
+        let built = plan.respectrum(&lazy);
+        assert_eq!(format!("{built:?}"), format!("{eager:?}"));
     }
 
     #[test]

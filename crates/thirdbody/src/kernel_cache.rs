@@ -1,6 +1,8 @@
 //! The caller-owned store of what is costly to build and reusable between solves:
-//! DC-FFT plans (one per grid size and parallelism) and surface-kernel spectra (one
-//! per body, grid size and cell size; a coated kernel costs 0.1-6 s at 256²). Like
+//! DC-FFT plans (one per grid size and parallelism) and surface kernels (one per
+//! body, grid size and cell size; a coated kernel costs 0.1-6 s at 256²), held as
+//! their quadrant: the operator that uses one builds its spectrum on the padding
+//! its products need. Like
 //! rustfft's `FftPlanner`, it is an ordinary value: the CLI's `solve` makes one, each
 //! sweep worker has its own, a Python `Solver` would own one. Nothing is global, two
 //! caches never share data, and the caller sizes it ([`KernelCache::with_capacity`])
@@ -9,7 +11,7 @@
 
 use std::sync::Arc;
 
-use crate::body::surface_kernel_spectrum;
+use crate::body::surface_kernel;
 use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum, Parallelism};
 use crate::error::Result;
@@ -17,9 +19,9 @@ use crate::grid::Grid;
 
 /// Spectra kept by default: the windows an automatic solve tries for a few bodies.
 const DEFAULT_CAPACITY: usize = 8;
-/// Bytes of spectra kept at most: a surface kernel's real spectrum and its quadrant
-/// take about 16 bytes per cell (a 1024² grid's 17 MB), so large grids keep fewer;
-/// one larger than this is not kept.
+/// Bytes of kernels kept at most: a surface kernel's quadrant takes 8 bytes per
+/// cell (a 1024² grid's 8 MB), so large grids keep fewer; one larger than this is
+/// not kept.
 const DEFAULT_BYTE_BUDGET: usize = 256 << 20;
 
 /// What a surface-kernel spectrum depends on: the body, the grid size and the cell
@@ -96,8 +98,9 @@ impl KernelCache {
         plan
     }
 
-    /// The surface-kernel spectrum of `body` on `grid`'s cells, built on `plan`
-    /// (which must be for `grid`'s size) unless held.
+    /// The surface kernel of `body` on `grid`'s cells, for `plan` (which must be for
+    /// `grid`'s size), unless held: given by its quadrant, with no spectrum built
+    /// ([`crate::convolution::ConvolutionPlan::even_kernel`]).
     pub fn surface_spectrum(
         &mut self,
         body: &Body,
@@ -115,7 +118,7 @@ impl KernelCache {
             self.spectra.push(entry);
             return Ok(spectrum);
         }
-        let spectrum = Arc::new(surface_kernel_spectrum(body, grid, plan)?);
+        let spectrum = Arc::new(surface_kernel(body, grid, plan)?);
         if spectrum.bytes() <= self.byte_budget {
             keep(
                 &mut self.spectra,
@@ -171,7 +174,7 @@ mod tests {
         let other = cache.surface_spectrum(&coated(0.38), &grid, &plan).unwrap();
         assert!(!Arc::ptr_eq(&first, &other));
         assert_eq!(cache.len(), 2);
-        let fresh = surface_kernel_spectrum(&coated(0.37), &grid, &plan).unwrap();
+        let fresh = surface_kernel(&coated(0.37), &grid, &plan).unwrap();
         assert_eq!(format!("{fresh:?}"), format!("{first:?}"));
         // A bad body is an error, and nothing is kept for it.
         assert!(cache.surface_spectrum(&coated(-1.0), &grid, &plan).is_err());

@@ -39,6 +39,9 @@ pub struct ConvolutionOperator {
     trimmed: Option<(Convolver, KernelSpectrum)>,
     /// Trimmed paddings planned so far (at most [`MAX_TRIMMED_PLANS`]).
     trimmed_plans: usize,
+    /// The kernel's spectrum on the full padding, built by the first product that
+    /// needs it when the kernel came as its quadrant only.
+    full: Option<KernelSpectrum>,
     products: usize,
 }
 
@@ -63,6 +66,7 @@ impl ConvolutionOperator {
             kernel,
             trimmed: None,
             trimmed_plans: 0,
+            full: None,
             products: 0,
         }
     }
@@ -115,7 +119,15 @@ impl InfluenceOperator for ConvolutionOperator {
                 }
             }
         }
-        self.convolver.apply(&self.kernel, p, w);
+        if self.kernel.has_values() {
+            self.convolver.apply(&self.kernel, p, w);
+        } else {
+            let plan = self.convolver.plan();
+            let full = self
+                .full
+                .get_or_insert_with(|| plan.respectrum(&self.kernel));
+            self.convolver.apply(full, p, w);
+        }
     }
     fn products(&self) -> usize {
         self.products
@@ -176,7 +188,9 @@ mod tests {
             .collect();
         let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
         let spectrum = Arc::new(plan.even_kernel_spectrum(&quadrant));
-        let mut op = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum));
+        // The operator gets the kernel as its quadrant only, as from a KernelCache.
+        let lazy = Arc::new(plan.even_kernel(quadrant.clone()));
+        let mut op = ConvolutionOperator::new(plan.convolver(), lazy);
         let mut reference = plan.convolver();
         // A disc of data in the middle, then a wider one, the whole grid, and the
         // first disc again.
@@ -204,6 +218,10 @@ mod tests {
         // The wide supports were not worth a padding of their own and did not drop
         // the one planned for the disc, which served it again.
         assert_eq!(op.trimmed_plans, 1);
+        assert!(
+            op.full.is_some(),
+            "the wide supports built the full spectrum"
+        );
         assert_eq!(op.products(), 4);
     }
 }

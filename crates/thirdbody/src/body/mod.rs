@@ -72,3 +72,17 @@ pub fn surface_kernel_spectrum(
         .surface_kernel_quadrant(grid.cell, grid.nx, grid.ny)?;
     Ok(plan.even_kernel_spectrum(&quadrant))
 }
+
+/// The surface-displacement kernel of `body` on `grid`'s cells, given by its
+/// quadrant only: the spectrum on a padding is built when a product needs it
+/// ([`ConvolutionPlan::even_kernel`]).
+pub fn surface_kernel(
+    body: &Body,
+    grid: &Grid,
+    plan: &Arc<ConvolutionPlan>,
+) -> Result<KernelSpectrum> {
+    let quadrant = body
+        .model()
+        .surface_kernel_quadrant(grid.cell, grid.nx, grid.ny)?;
+    Ok(plan.even_kernel(quadrant))
+}
