@@ -67,10 +67,7 @@ pub fn surface_kernel_spectrum(
     grid: &Grid,
     plan: &Arc<ConvolutionPlan>,
 ) -> Result<KernelSpectrum> {
-    let quadrant = body
-        .model()
-        .surface_kernel_quadrant(grid.cell, grid.nx, grid.ny)?;
-    Ok(plan.even_kernel_spectrum(&quadrant))
+    Ok(plan.respectrum(&surface_kernel(body, grid, plan)?))
 }
 
 /// The surface-displacement kernel of `body` on `grid`'s cells, given by its
