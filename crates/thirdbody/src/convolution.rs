@@ -442,8 +442,10 @@ impl ConvolutionPlan {
         // The spectrum of an even real kernel is real and even: keep the real parts
         // of the first py/2 + 1 rows (the imaginary parts are rounding residue).
         let hy = py / 2 + 1;
+        let min_len = if self.lanes() == 1 { usize::MAX } else { 1 };
         let even: Vec<f64> = values
             .par_chunks_exact(py)
+            .with_min_len(min_len)
             .flat_map_iter(|col| col[..hy].iter().map(|v| v.re))
             .collect();
         KernelSpectrum {
@@ -460,7 +462,11 @@ impl ConvolutionPlan {
         let self_coefficient = wrapped[0];
         let mut values = self.forward_padded(&wrapped, py);
         let scale = 1.0 / (px * py) as f64;
-        values.par_iter_mut().for_each(|v| *v *= scale);
+        let min_len = if self.lanes() == 1 { usize::MAX } else { 1 };
+        values
+            .par_chunks_mut(py)
+            .with_min_len(min_len)
+            .for_each(|col| col.iter_mut().for_each(|v| *v *= scale));
         KernelSpectrum {
             nx,
             ny,

@@ -58,7 +58,8 @@ impl Case {
         let n = grid.len();
         let mut shape = vec![0.0; n];
         let mut slope = vec![0.0; n];
-        self.slider.sample(grid, &mut shape, &mut slope)?;
+        self.slider
+            .sample_rows(grid, &mut shape, &mut slope, parallelism)?;
         let velocity = self.velocity();
         Ok(ContactProblem {
             grid: *grid,

@@ -4,7 +4,9 @@
 //! df/dx, which gives the hysteresis friction `mu = sum(p df/dx) h^2 / Q`
 //! (the general form of paper eq. 12). Shapes are sampled at cell centres.
 
+use crate::convolution::Parallelism;
 use crate::error::{require_positive, Error, Result};
+use crate::passes::Passes;
 
 /// A rigid smooth slider.
 #[derive(Debug, Clone, PartialEq)]
@@ -162,6 +164,18 @@ impl Slider {
     ///
     /// Fails if the window reaches outside a height map.
     pub fn sample(&self, grid: &crate::grid::Grid, f: &mut [f64], dfdx: &mut [f64]) -> Result<()> {
+        self.sample_rows(grid, f, dfdx, Parallelism::Sequential)
+    }
+
+    /// [`Self::sample`] with the rows split over the pool when `parallelism` and
+    /// the grid's size allow (the solvers' rule, `crate::passes`).
+    pub(crate) fn sample_rows(
+        &self,
+        grid: &crate::grid::Grid,
+        f: &mut [f64],
+        dfdx: &mut [f64],
+        parallelism: Parallelism,
+    ) -> Result<()> {
         let min_height = match self {
             Slider::HeightMap(m) => m.heights.iter().copied().fold(f64::INFINITY, f64::min),
             _ => 0.0,
@@ -170,8 +184,9 @@ impl Slider {
         // Rows in parallel; every value is computed alone, so the bits do not
         // depend on the thread count.
         let rows = f.par_chunks_mut(grid.nx).zip(dfdx.par_chunks_mut(grid.nx));
+        let min_rows = Passes::new(grid.len(), parallelism).min_rows(grid.nx);
         rows.enumerate()
-            .with_min_len(16)
+            .with_min_len(min_rows)
             .try_for_each(|(j, (frow, drow))| {
                 let y = grid.y(j);
                 for i in 0..grid.nx {

@@ -6,7 +6,7 @@
 use std::time::Instant;
 
 use thirdbody::body::coated_stress::StressMethod;
-use thirdbody::stress::{CoatedStressKernels, OffsetLattice, Side};
+use thirdbody::stress::{CoatedStressKernels, InfluenceTable, OffsetLattice, Side};
 
 mod coated_tables;
 
@@ -36,6 +36,21 @@ fn depths(h1: f64) -> [(f64, Side); 6] {
     ]
 }
 
+/// The full expansion's and the sub-cell split's tables of `k` at `z` on `l`, and
+/// the seconds each took.
+fn timed_tables(
+    k: &CoatedStressKernels,
+    z: f64,
+    l: &OffsetLattice,
+) -> (InfluenceTable, InfluenceTable, f64, f64) {
+    let t0 = Instant::now();
+    let full = table(k, z, l, StressMethod::Full);
+    let t1 = Instant::now();
+    let sub = table(k, z, l, StressMethod::SubCell);
+    let t2 = Instant::now();
+    (full, sub, (t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64())
+}
+
 #[test]
 #[ignore = "measurement: prints the sub-cell split's difference from the full expansion"]
 fn sub_cell_survey() {
@@ -50,13 +65,9 @@ fn sub_cell_survey() {
                 let (mut tf, mut ts) = (0.0, 0.0);
                 for (z, side) in depths(h1) {
                     let k = kernels(ratio, h1, side);
-                    let t0 = Instant::now();
-                    let full = table(&k, z, &l, StressMethod::Full);
-                    let t1 = Instant::now();
-                    let sub = table(&k, z, &l, StressMethod::SubCell);
-                    let t2 = Instant::now();
-                    tf += (t1 - t0).as_secs_f64();
-                    ts += (t2 - t1).as_secs_f64();
+                    let (full, sub, t_full, t_sub) = timed_tables(&k, z, &l);
+                    tf += t_full;
+                    ts += t_sub;
                     worst = worst.max(difference(&full, &sub) / peak(&full));
                 }
                 println!(
@@ -92,6 +103,32 @@ fn assert_sub_cell_matches_full(l: &OffsetLattice, h1: f64, ratios: &[f64]) {
             println!("E1/E2 {ratio} z {z} {side:?}: {e:.2e}");
             assert!(e < 2e-5, "E1/E2 {ratio}, z {z} {side:?}: {e:.2e}");
         }
+    }
+}
+
+/// The sub-cell split's largest difference from the full expansion on `l` at depth
+/// `z`, relative to the kernel's peak (on the offsets around the loaded cell, by
+/// `peak_by`): for lattices that need not hold the loaded cell.
+fn sub_cell_error(
+    k: &CoatedStressKernels,
+    z: f64,
+    l: &OffsetLattice,
+    peak_by: StressMethod,
+) -> f64 {
+    let full = table(k, z, l, StressMethod::Full);
+    let sub = table(k, z, l, StressMethod::SubCell);
+    difference(&full, &sub) / peak(&table(k, z, &lattice(3, -1.0), peak_by))
+}
+
+/// 5 x 4 offsets on half-cell rows (an XZ section on a row edge), two of them on
+/// the loaded cell's edge.
+fn edge_rows() -> OffsetLattice {
+    OffsetLattice {
+        cell: 1.0,
+        x_first: -2.0,
+        cols: 5,
+        y_first: -1.5,
+        rows: 4,
     }
 }
 
@@ -137,11 +174,7 @@ fn sub_cell_places_shifted_lattices() {
         };
         for (z, side) in [(0.0, Side::Coating), (h1, Side::Substrate)] {
             let k = kernels(3.0, h1, side);
-            let full = table(&k, z, &l, StressMethod::Full);
-            let sub = table(&k, z, &l, StressMethod::SubCell);
-            // Relative to the kernel's peak (on the loaded cell).
-            let scale = peak(&table(&k, z, &lattice(3, -1.0), StressMethod::Full));
-            let e = difference(&full, &sub) / scale;
+            let e = sub_cell_error(&k, z, &l, StressMethod::Full);
             println!("first ({x_first}, {y_first}) z {z} {side:?}: {e:.2e}");
             assert!(e < 2e-5, "first ({x_first}, {y_first}), z {z}: {e:.2e}");
         }
@@ -171,13 +204,7 @@ fn stiff_sub_cell_agrees_with_the_full_expansion() {
 /// carrier at a cell's depth: 3e-5 at E1/E2 = 1e4, and 0.2 at h1 = cell / 100).
 #[test]
 fn thin_sub_cell_taper_agrees_with_the_full_expansion() {
-    let l = OffsetLattice {
-        cell: 1.0,
-        x_first: -2.0,
-        cols: 5,
-        y_first: -1.5,
-        rows: 4,
-    };
+    let l = edge_rows();
     for ratio in [0.01, 1e4] {
         for (h1, z, side) in [
             (1.0 / 60.0, 0.0, Side::Coating),
@@ -186,10 +213,7 @@ fn thin_sub_cell_taper_agrees_with_the_full_expansion() {
         ] {
             let k = kernels(ratio, h1, side);
             assert_eq!(k.method(&l), StressMethod::SubCell);
-            let full = table(&k, z, &l, StressMethod::Full);
-            let sub = table(&k, z, &l, StressMethod::SubCell);
-            let scale = peak(&table(&k, z, &lattice(3, -1.0), StressMethod::SubCell));
-            let e = difference(&full, &sub) / scale;
+            let e = sub_cell_error(&k, z, &l, StressMethod::SubCell);
             println!("E1/E2 {ratio} h1 {h1:.4} z {z:.4} {side:?}: {e:.2e}");
             assert!(e < 2e-5, "E1/E2 {ratio}, h1 {h1}, z {z} {side:?}: {e:.2e}");
         }
@@ -199,13 +223,7 @@ fn thin_sub_cell_taper_agrees_with_the_full_expansion() {
 #[test]
 #[ignore = "measurement: the sub-cell split on half-cell rows (the loaded cell's edge) against the full expansion, thin coatings"]
 fn sub_cell_edge_survey() {
-    let l = OffsetLattice {
-        cell: 1.0,
-        x_first: -2.0,
-        cols: 5,
-        y_first: -1.5,
-        rows: 4,
-    };
+    let l = edge_rows();
     for h1 in [1.0 / 30.0, 1.0 / 100.0] {
         for ratio in [3.0, 300.0, 1e4] {
             for (z, side) in [
@@ -214,17 +232,13 @@ fn sub_cell_edge_survey() {
                 (h1, Side::Substrate),
             ] {
                 let k = kernels(ratio, h1, side);
-                let t0 = Instant::now();
-                let full = table(&k, z, &l, StressMethod::Full);
-                let t1 = Instant::now();
-                let sub = table(&k, z, &l, StressMethod::SubCell);
-                let t2 = Instant::now();
+                let (full, sub, t_full, t_sub) = timed_tables(&k, z, &l);
                 let scale = peak(&table(&k, z, &lattice(3, -1.0), StressMethod::SubCell));
                 println!(
                     "h1 {h1:.4} E1/E2 {ratio} z {z:.4} {side:?}: {:.2e}; full {:.1} s, sub-cell {:.2} s",
                     difference(&full, &sub) / scale,
-                    (t1 - t0).as_secs_f64(),
-                    (t2 - t1).as_secs_f64()
+                    t_full,
+                    t_sub
                 );
             }
         }

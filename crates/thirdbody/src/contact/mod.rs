@@ -486,7 +486,7 @@ pub fn solve_problem(
 ) -> Result<Solution> {
     let grid = problem.grid;
     let mut p = match warm {
-        Some((old, old_p)) => window::interpolate(old, old_p, &grid),
+        Some((old, old_p)) => window::interpolate(old, old_p, &grid, params.parallelism),
         None => Vec::new(),
     };
     let cold = p.iter().all(|&v| v <= 0.0);

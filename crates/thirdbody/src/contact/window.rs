@@ -13,6 +13,7 @@ use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::layer::LayerEstimate;
+use crate::passes::Passes;
 use crate::solution::Solution;
 
 /// Margin of the window around the estimated contact.
@@ -188,12 +189,16 @@ pub(crate) fn check_resolution(solution: &Solution) -> Result<()> {
 }
 
 /// Bilinear interpolation of a cell field from one grid to another (zero outside).
-pub(crate) fn interpolate(old: &Grid, field: &[f64], new: &Grid) -> Vec<f64> {
-    use rayon::prelude::*;
+pub(crate) fn interpolate(
+    old: &Grid,
+    field: &[f64],
+    new: &Grid,
+    parallelism: Parallelism,
+) -> Vec<f64> {
     let mut out = vec![0.0; new.len()];
     out.par_chunks_mut(new.nx)
         .enumerate()
-        .with_min_len(16)
+        .with_min_len(Passes::new(new.len(), parallelism).min_rows(new.nx))
         .for_each(|(j, row)| {
             let v = (new.y(j) - old.y0) / old.cell - 0.5;
             for (i, o) in row.iter_mut().enumerate() {

@@ -254,21 +254,24 @@ impl ViscoelasticRows {
         let rows: Vec<f64> = p
             .par_chunks(self.nx)
             .with_min_len(self.passes.min_rows(self.nx))
-            .map(|prow| {
-                let mut state = vec![0.0; self.branches.len()];
-                let mut row = 0.0;
-                for i in (0..self.nx).rev() {
-                    let ((f, _), (q, _)) = self.forcing_and_creep(prow[i]);
-                    let mut moved = self.flow_per_cell * q;
-                    for (b, e) in self.branches.iter().zip(state.iter_mut()) {
-                        let out = b.keep_full * *e + b.take_full * b.scale * f;
-                        moved += out - *e;
-                        *e = out;
+            .map_init(
+                || vec![0.0; self.branches.len()],
+                |state, prow| {
+                    state.fill(0.0);
+                    let mut row = 0.0;
+                    for i in (0..self.nx).rev() {
+                        let ((f, _), (q, _)) = self.forcing_and_creep(prow[i]);
+                        let mut moved = self.flow_per_cell * q;
+                        for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                            let out = b.keep_full * *e + b.take_full * b.scale * f;
+                            moved += out - *e;
+                            *e = out;
+                        }
+                        row += prow[i] * moved;
                     }
-                    row += prow[i] * moved;
-                }
-                row
-            })
+                    row
+                },
+            )
             .collect();
         let total: f64 = rows.iter().fold(0.0, |t, r| t + r);
         // Each cell's term is the energy per unit area dissipated while material
