@@ -3,8 +3,9 @@
 //! bare body (`c_w = 0`) or a body under a creep-free linear layer (a Winkler bed of
 //! compliance `c_w`). Minimises the complementary energy over `p >= 0` with the load
 //! constraint `sum(p) h^2 = Q`; the approach D is the mean of `A p + f` over the
-//! contact. The product `A t` of each step also updates `A p` when the projection
-//! leaves the step unchanged, so late iterations cost one convolution each.
+//! contact. The product `A t` of each step also updates `A p`; where the projection
+//! changed the step on a few cells, the operator adds their part directly
+//! ([`InfluenceOperator::add_sparse`]), so an iteration costs one convolution.
 
 use std::ops::ControlFlow;
 
@@ -20,8 +21,10 @@ use crate::problem::ContactProblem;
 /// What the user can try when CG stops short.
 const HINT: &str = "raise solver.max_iterations or solver.tolerance";
 
-/// Exact recomputation of `A p` at least this often, against drift of the updates.
-const REFRESH_EVERY: usize = 20;
+/// Exact recomputation of `A p` at least this often, against drift of the updates
+/// (each adds a rounding of the step's size; the stopping test is always confirmed
+/// on an exact product).
+const REFRESH_EVERY: usize = 64;
 
 /// Runs PK-CG on `problem` (whose operator is `K + winkler I`) from the positive
 /// initial pressure in `p` (overwritten).
@@ -166,42 +169,56 @@ pub(crate) fn polonsky_keer(
         }
         let tau = num / den;
         // The step on the contact, projected onto p >= 0; cells that were not loaded
-        // but where the surfaces overlap join the contact. Flags: projected, overlap.
-        let [new_sum, projected, overlap] = {
-            let parts: Vec<[f64; 3]> = p
-                .par_chunks_mut(CHUNK)
-                .with_min_len(min_len)
-                .enumerate()
-                .map(|(c, pc)| {
-                    let s = c * CHUNK;
-                    let (tc, gc) = (&t[s..], &g[s..]);
-                    lane_sum(0, pc.len(), |k| {
-                        let pk = &mut pc[k];
-                        let mut flags = [0.0; 2];
-                        if *pk > 0.0 {
-                            *pk -= tau * tc[k];
-                            if *pk < 0.0 {
-                                *pk = 0.0;
-                                flags[0] = 1.0;
-                            }
-                        } else if gc[k] < 0.0 {
-                            *pk -= tau * gc[k];
-                            flags[1] = 1.0;
+        // but where the surfaces overlap join the contact. Where either happened, the
+        // new pressure differs from the plain step `p - tau t` by `delta` (projected:
+        // `tau t - p`; joined: `-tau g`), listed in cell order.
+        let parts: Vec<(f64, Changed, bool)> = p
+            .par_chunks_mut(CHUNK)
+            .with_min_len(min_len)
+            .enumerate()
+            .map(|(c, pc)| {
+                let s = c * CHUNK;
+                let (tc, gc) = (&t[s..], &g[s..]);
+                let mut changed = Vec::new();
+                let mut overlap = false;
+                let [sum] = lane_sum(0, pc.len(), |k| {
+                    let pk = &mut pc[k];
+                    if *pk > 0.0 {
+                        let step = *pk - tau * tc[k];
+                        if step < 0.0 {
+                            changed.push((s + k, -step));
+                            *pk = 0.0;
+                        } else {
+                            *pk = step;
                         }
-                        [*pk, flags[0], flags[1]]
-                    })
-                })
-                .collect();
-            add_in_order(&parts)
-        };
-        let (projected, overlap) = (projected > 0.0, overlap > 0.0);
-        conjugate = !overlap;
+                    } else if gc[k] < 0.0 {
+                        *pk -= tau * gc[k];
+                        changed.push((s + k, *pk));
+                        overlap = true;
+                    }
+                    [*pk]
+                });
+                (sum, changed, overlap)
+            })
+            .collect();
+        let new_sum = parts.iter().fold(0.0, |total, (sum, _, _)| total + sum);
+        conjugate = !parts.iter().any(|(_, _, overlap)| *overlap);
+        let changed: Changed = parts.into_iter().flat_map(|(_, c, _)| c).collect();
         let scale = if new_sum > 0.0 {
             target_sum / new_sum
         } else {
             1.0
         };
-        if projected || overlap || since_refresh >= REFRESH_EVERY {
+        // `A p` follows the step as `A p - tau r + A delta`, with `A delta` added
+        // directly when the operator finds that cheaper than a product; else (and
+        // every REFRESH_EVERY iterations) it is recomputed.
+        let corrected = !changed.is_empty() && op.add_sparse(&changed, &mut u);
+        if corrected && winkler != 0.0 {
+            for &(k, delta) in &changed {
+                u[k] += winkler * delta;
+            }
+        }
+        if (!changed.is_empty() && !corrected) || since_refresh >= REFRESH_EVERY {
             passes.scale(p, scale);
             apply(op, p, &mut u);
             sums = GapSums::of(&passes, &u, f, p);
@@ -230,6 +247,10 @@ pub(crate) fn polonsky_keer(
     let residual = monitor.last_residual();
     Err(monitor.failure(params.max_iterations, residual, HINT.into()))
 }
+
+/// Cells where the projection changed a step, in cell order, with the change of
+/// their pressure.
+type Changed = Vec<(usize, f64)>;
 
 /// The sums of the gap `u + f` over the contact (`p > 0`), of the contact's cells
 /// and of the pressure, and the largest `|u|`: what an iteration needs first.
