@@ -547,10 +547,12 @@ pub fn needed_padding(n: usize, (first, last): (usize, usize)) -> usize {
 }
 
 /// The padding an FFT does fastest among lengths of at least `needed`: the next
-/// `2^a`, `3 * 2^a`, `5 * 2^a` or `7 * 2^a` (rustfft's and realfft's quick sizes),
-/// at most `2n`.
+/// `m * 2^a` with an odd part `m` of 1, 3, 5, 7, 9, 25 or 27, at most `2n`. Measured
+/// (a 512² grid's DC-FFT on paddings 768 to 1024): these cost 1.04-1.22 times a
+/// power of two's time per padded cell, 13 * 2^a 1.57 times; the same at 256² and
+/// 1024².
 pub fn quick_padding(needed: usize, n: usize) -> usize {
-    let quick = [1, 3, 5, 7]
+    let quick = [1, 3, 5, 7, 9, 25, 27]
         .into_iter()
         .map(|m| {
             let mut p = 2 * m;
@@ -1000,7 +1002,9 @@ mod tests {
         assert_eq!(needed_padding(10, (5, 6)), 10);
         // Data at one edge reach the far edge.
         assert_eq!(needed_padding(9, (0, 2)), 16);
-        assert_eq!(quick_padding(1669, 1024), 1792);
+        assert_eq!(quick_padding(1669, 1024), 27 * 64);
+        assert_eq!(quick_padding(1730, 1024), 7 * 256);
+        assert_eq!(quick_padding(790, 512), 25 * 32);
         assert_eq!(quick_padding(1500, 1024), 1536);
         assert_eq!(quick_padding(2047, 1024), 2048);
         assert_eq!(quick_padding(130, 64), 128);

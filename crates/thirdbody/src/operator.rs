@@ -233,7 +233,13 @@ mod tests {
         let mut reference = plan.convolver();
         // A disc of data in the middle, then a wider one, the whole grid, and the
         // first disc again.
-        for radius in [20.0, 30.0, 200.0, 20.0] {
+        let (first, second) = ([144, 128], [160, 144]);
+        for (radius, expected) in [
+            (20.0, first),
+            (30.0, second),
+            (200.0, second),
+            (20.0, second),
+        ] {
             let field: Vec<f64> = (0..nx * ny)
                 .map(|k| {
                     let (x, y) = ((k % nx) as f64 - 47.5, (k / nx) as f64 - 39.5);
@@ -249,14 +255,16 @@ mod tests {
                 assert!((a - b).abs() < 1e-13 * scale, "radius {radius}");
             }
             let trimmed = op.trimmed.as_ref().map(|(c, _)| c.plan().padding());
-            if radius == 20.0 {
-                // 96 cells, data from 27 to 68 widened by 3: 2 x 71 = 142 -> 160.
-                assert_eq!(trimmed, Some([160, 128]), "radius {radius}");
-            }
+            // The first disc: 96 cells, data from 27 to 68 widened by 3: 2 x 71 =
+            // 142 -> 9 x 16 (and 124 -> 128 on the 80 rows). The wider one: data
+            // from 18 to 77 widened by 3: 2 x 80 = 160 = 5 x 32 (144 = 9 x 16). It
+            // holds the whole grid's data only on the full padding, so keeps the
+            // second, which serves the first disc again.
+            assert_eq!(trimmed, Some(expected), "radius {radius}");
         }
         // The wide supports were not worth a padding of their own and did not drop
-        // the one planned for the disc, which served it again.
-        assert_eq!(op.trimmed_plans, 1);
+        // the one planned for the discs.
+        assert_eq!(op.trimmed_plans, 2);
         assert!(
             op.full.is_some(),
             "the wide supports built the full spectrum"
