@@ -68,6 +68,7 @@ pub(crate) fn polonsky_keer(
     let mut conjugate = false;
     let mut g_old = 1.0;
     let mut since_refresh = 0;
+    let mut chunks = vec![ChunkKind::default(); n.div_ceil(CHUNK)];
     for iteration in 1..=params.max_iterations {
         let GapSums {
             gap_sum,
@@ -80,24 +81,40 @@ pub(crate) fn polonsky_keer(
         // complementarity residual's sums (see `relative_complementarity_residual`)
         // and the squared gap over the contact.
         let c_scale = p_sum / contact / w_max;
-        let [num, den, big_g] = {
-            let parts: Vec<[f64; 3]> = g
+        // On the way, which chunks hold contact cells and which cells that would
+        // join it (outside the contact, the surfaces overlap): the passes of the
+        // step skip the others, whose terms are zero.
+        let (num, den, big_g) = {
+            let parts: Vec<([f64; 3], Chunk)> = g
                 .par_chunks_mut(CHUNK)
                 .with_min_len(min_len)
                 .enumerate()
                 .map(|(c, gc)| {
                     let s = c * CHUNK;
                     let (uc, fc, pc) = (&u[s..], &f[s..], &p[s..]);
-                    lane_sum(0, gc.len(), |k| {
+                    let sums = lane_sum(0, gc.len(), |k| {
                         let (gk, pk) = (uc[k] + fc[k] - approach, pc[k]);
                         gc[k] = gk;
                         let m = pk.min(c_scale * gk);
                         let on = if pk > 0.0 { gk * gk } else { 0.0 };
                         [m * m, pk * pk, on]
-                    })
+                    });
+                    let pc = &pc[..gc.len()];
+                    let chunk = Chunk {
+                        contact: pc.iter().any(|&v| v > 0.0),
+                        joining: pc.iter().zip(gc.iter()).any(|(&p, &g)| p <= 0.0 && g < 0.0),
+                    };
+                    (sums, chunk)
                 })
                 .collect();
-            add_in_order(&parts)
+            for (kind, (_, chunk)) in chunks.iter_mut().zip(&parts) {
+                // A chunk that held contact keeps its direction until cleared.
+                kind.direction |= chunk.contact;
+                kind.now = *chunk;
+            }
+            let sums: Vec<[f64; 3]> = parts.iter().map(|(s, _)| *s).collect();
+            let [num, den, big_g] = add_in_order(&sums);
+            (num, den, big_g)
         };
         let residual = if contact == 0.0 || w_max == 0.0 {
             f64::INFINITY
@@ -130,6 +147,7 @@ pub(crate) fn polonsky_keer(
             t.par_chunks_mut(CHUNK)
                 .with_min_len(min_len)
                 .enumerate()
+                .filter(|(c, _)| chunks[*c].direction)
                 .for_each(|(c, tc)| {
                     let s = c * CHUNK;
                     for (k, tk) in tc.iter_mut().enumerate() {
@@ -140,10 +158,16 @@ pub(crate) fn polonsky_keer(
                         };
                     }
                 });
+            for kind in chunks.iter_mut() {
+                kind.direction = kind.now.contact;
+            }
             apply(op, &t, &mut r);
             // Over the contact: sum of r, g.t, r.t and sum of t; the projected
             // curvature is sum((r - rbar) t) = r.t - rbar sum(t).
             let [r_sum, g_t, r_t, t_sum] = passes.sum(n, |a, b| {
+                if !chunks[a / CHUNK].now.contact {
+                    return [0.0; 4];
+                }
                 lane_sum(a, b, |k| {
                     if p[k] > 0.0 {
                         [r[k], g[k] * t[k], r[k] * t[k], t[k]]
@@ -181,6 +205,9 @@ pub(crate) fn polonsky_keer(
                 let (tc, gc) = (&t[s..], &g[s..]);
                 let mut changed = Vec::new();
                 let mut overlap = false;
+                if !(chunks[c].now.contact || chunks[c].now.joining) {
+                    return (0.0, changed, overlap);
+                }
                 let [sum] = lane_sum(0, pc.len(), |k| {
                     let pk = &mut pc[k];
                     if *pk > 0.0 {
@@ -246,6 +273,31 @@ pub(crate) fn polonsky_keer(
     }
     let residual = monitor.last_residual();
     Err(monitor.failure(params.max_iterations, residual, HINT.into()))
+}
+
+/// What a chunk of cells holds: contact cells, cells about to join the contact.
+#[derive(Debug, Clone, Copy, Default)]
+struct Chunk {
+    contact: bool,
+    joining: bool,
+}
+
+/// A chunk now, and whether the search direction may be non-zero there (it held
+/// contact when the direction was last formed, or holds it now).
+#[derive(Debug, Clone, Copy)]
+struct ChunkKind {
+    now: Chunk,
+    direction: bool,
+}
+
+impl Default for ChunkKind {
+    /// Before the first direction: every chunk may hold one.
+    fn default() -> Self {
+        ChunkKind {
+            now: Chunk::default(),
+            direction: true,
+        }
+    }
 }
 
 /// Cells where the projection changed a step, in cell order, with the change of
