@@ -229,6 +229,8 @@ pub(crate) fn polonsky_keer(
             })
             .collect();
         let new_sum = parts.iter().fold(0.0, |total, (sum, _, _)| total + sum);
+        // Chunks that hold contact after the step (a sum of pressures >= 0).
+        let loaded: Vec<bool> = parts.iter().map(|(sum, _, _)| *sum > 0.0).collect();
         conjugate = !parts.iter().any(|(_, _, overlap)| *overlap);
         let changed: Changed = parts.into_iter().flat_map(|(_, c, _)| c).collect();
         let scale = if new_sum > 0.0 {
@@ -260,6 +262,14 @@ pub(crate) fn polonsky_keer(
                 .map(|(c, (pc, uc))| {
                     let s = c * CHUNK;
                     let (rc, fc) = (&r[s..], &f[s..]);
+                    if !loaded[c] {
+                        // No pressure to scale and no gap sums: only A p.
+                        let largest = uc.iter_mut().zip(rc).fold(0.0f64, |m, (uk, rk)| {
+                            *uk = scale * (*uk - tau * rk);
+                            m.max(uk.abs())
+                        });
+                        return ([0.0; 3], largest);
+                    }
                     lane_sum_max(0, pc.len(), |k| {
                         pc[k] *= scale;
                         uc[k] = scale * (uc[k] - tau * rc[k]);
