@@ -42,6 +42,29 @@ pub fn layered(
     c
 }
 
+/// A linear layer of compliance 0.02 at infinite velocity: a Winkler bed on the
+/// half-space (no creep, so conjugate gradients solve it).
+pub fn winkler_bed(load: f64, cells: usize) -> Case {
+    layered(
+        load,
+        cells,
+        0.02,
+        f64::INFINITY,
+        ComplianceLaw::Linear,
+        Integration::Exact,
+    )
+}
+
+/// The largest pressure of `reference` and the largest difference of `p` from it.
+pub fn peak_and_largest_difference(p: &[f64], reference: &[f64]) -> (f64, f64) {
+    let peak = reference.iter().fold(0.0f64, |m, v| m.max(*v));
+    let diff = p
+        .iter()
+        .zip(reference)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    (peak, diff)
+}
+
 /// The paper's sigmoid law (eq. 11).
 pub fn sigmoid(delta: f64, p0: f64) -> ComplianceLaw {
     ComplianceLaw::Sigmoid { delta, p0 }
@@ -81,12 +104,7 @@ pub fn against_dense_reference(case: &Case, label: &str) -> (f64, f64, usize) {
     let fast = solve_to(case, 1e-13);
     let dense = thirdbody::reference::solve_dense(case, &fast.grid, 1e-13)
         .unwrap_or_else(|e| panic!("{label}: {e}"));
-    let pmax = dense.pressure.iter().fold(0.0f64, |m, v| m.max(*v));
-    let diff = fast
-        .pressure
-        .iter()
-        .zip(&dense.pressure)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let (pmax, diff) = peak_and_largest_difference(&fast.pressure, &dense.pressure);
     let loaded = fast.pressure.iter().filter(|&&p| p > 0.0).count();
     eprintln!(
         "{label}: max|dp|/max p = {:.2e}, D {:.3e} vs {:.3e}, {loaded} loaded cells, {:?}",
