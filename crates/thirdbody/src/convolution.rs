@@ -893,16 +893,12 @@ pub fn add_sparse_even_convolution(
                 .for_each(|(o, k)| *o += value * k);
         }
     };
-    if parallelism == Parallelism::Rayon && nx * ny >= PARALLEL_MIN_CELLS {
-        out.par_chunks_mut(nx)
-            .with_min_len(4096usize.div_ceil(nx))
-            .enumerate()
-            .for_each(|(j, row)| add_row(j, row));
-    } else {
-        out.chunks_mut(nx)
-            .enumerate()
-            .for_each(|(j, row)| add_row(j, row));
-    }
+    // Rows split over the pool as the solvers' passes split them.
+    let passes = crate::passes::Passes::new(nx * ny, parallelism);
+    out.par_chunks_mut(nx)
+        .with_min_len(passes.min_rows(nx))
+        .enumerate()
+        .for_each(|(j, row)| add_row(j, row));
 }
 
 #[cfg(test)]

@@ -108,8 +108,6 @@ pub(crate) fn polonsky_keer(
                 })
                 .collect();
             for (kind, (_, chunk)) in chunks.iter_mut().zip(&parts) {
-                // A chunk that held contact keeps its direction until cleared.
-                kind.direction |= chunk.contact;
                 kind.now = *chunk;
             }
             let sums: Vec<[f64; 3]> = parts.iter().map(|(s, _)| *s).collect();
@@ -147,7 +145,7 @@ pub(crate) fn polonsky_keer(
             t.par_chunks_mut(CHUNK)
                 .with_min_len(min_len)
                 .enumerate()
-                .filter(|(c, _)| chunks[*c].direction)
+                .filter(|(c, _)| chunks[*c].direction || chunks[*c].now.contact)
                 .for_each(|(c, tc)| {
                     let s = c * CHUNK;
                     for (k, tk) in tc.iter_mut().enumerate() {
@@ -293,7 +291,7 @@ struct Chunk {
 }
 
 /// A chunk now, and whether the search direction may be non-zero there (it held
-/// contact when the direction was last formed, or holds it now).
+/// contact when the direction was last formed).
 #[derive(Debug, Clone, Copy)]
 struct ChunkKind {
     now: Chunk,
