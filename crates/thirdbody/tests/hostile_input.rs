@@ -140,9 +140,8 @@ fn results_outside_the_model_carry_warnings() {
             .unwrap()
             .case
     };
-    // On 64^2 (32^2 does not resolve the creep: the energy balance is off by more
-    // than 1%,
-    // which is itself a warning).
+    // On 64^2 (on 32^2 friction and dissipated power disagree by more than the
+    // grid's stated accuracy, which is itself a warning).
     let inside = parse(&text.replace("cells = [32, 32]", "cells = [64, 64]"));
     let s = solve(&inside, &SolverParams::default()).unwrap();
     assert!(thirdbody::report::model_warnings(&inside, &s).is_empty());
