@@ -681,3 +681,65 @@ fn bad_rheology_parameters_are_errors_naming_the_key() {
         &["rheology", "kelvin_voigt"],
     );
 }
+
+#[test]
+fn a_box_spectrum_parses_and_rejects_the_keys_it_does_not_take() {
+    let b = layer_of(&with_layer(
+        "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+         shortest_time = 0.1\nlongest_time = 100",
+    ));
+    assert_eq!(
+        b.rheology,
+        Rheology::BoxSpectrum {
+            glassy_compliance: 0.01,
+            compliance: 0.02,
+            shortest_time: 0.1,
+            longest_time: 100.0
+        }
+    );
+    let e = error_naming(
+        &with_layer(
+            "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             shortest_time = 0.1\nlongest_time = 100\nretardation_time = 1",
+        ),
+        &[
+            "layer.retardation_time",
+            "box_spectrum",
+            "shortest_time, longest_time",
+        ],
+    );
+    assert!(matches!(e, Error::UnusedField { .. }), "{e:?}");
+    error_naming(
+        &with_layer(
+            "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             shortest_time = 0.1",
+        ),
+        &["layer.longest_time", "box_spectrum"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             shortest_time = 10\nlongest_time = 1",
+        ),
+        &["layer.longest_time", "shortest_time <= longest_time"],
+    );
+    // Another preset's key is unused for a Zener layer, and a key of no preset is
+    // unknown at its line.
+    error_naming(
+        &with_layer(
+            "rheology = \"zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             retardation_time = 1\nlongest_time = 3",
+        ),
+        &["layer.longest_time", "zener"],
+    );
+    let e = error_naming(
+        &with_layer("rheology = \"zener\"\nglassy_compliance = 0.01\nlongest_tme = 3"),
+        &[
+            "(layer.longest_tme)",
+            "unknown field",
+            "`longest_time`",
+            "`integration`",
+        ],
+    );
+    assert!(matches!(e, Error::Parse(_)), "{e:?}");
+}

@@ -61,6 +61,15 @@ fn presets() -> Vec<(&'static str, Rheology)> {
                 viscosity: None,
             },
         ),
+        (
+            "box_spectrum",
+            Rheology::BoxSpectrum {
+                glassy_compliance: 0.005,
+                compliance: 0.015,
+                shortest_time: 0.2,
+                longest_time: 2e3,
+            },
+        ),
     ]
 }
 
@@ -269,6 +278,22 @@ fn a_one_branch_prony_layer_is_the_zener_layer() {
             1e-12,
         );
         assert_eq!(z.pressure, f.pressure);
+        // So is a box spectrum of zero width.
+        let b = solve_to(
+            &with_layer(
+                Rheology::BoxSpectrum {
+                    glassy_compliance: 0.01,
+                    compliance: 0.015,
+                    shortest_time: 1.0,
+                    longest_time: 1.0,
+                },
+                law.clone(),
+                3e-3,
+                48,
+            ),
+            1e-12,
+        );
+        assert_eq!(z.pressure, b.pressure);
         let relaxation = Rheology::RelaxationProny {
             equilibrium_stiffness: 1.0 / 0.025,
             branches: vec![RelaxationBranch {

@@ -7,13 +7,14 @@
 //! ([`super::law`]). Each named preset is one value implementing [`RheologyModel`],
 //! in its own file: the paper's Maxwell body (eq. 2, `maxwell.rs`), Kelvin–Voigt,
 //! Zener (standard linear solid), Burgers, a Prony series of compliances, a Prony
-//! series of relaxation stiffnesses (converted exactly, [`relaxation_to_creep`]), and a
-//! fractional Zener body discretised into branches ([`fractional_zener_branches`]).
-//! A case holds the data
+//! series of relaxation stiffnesses (converted exactly, [`relaxation_to_creep`]),, a
+//! fractional Zener body discretised into branches ([`fractional_zener_branches`])
+//! and a box retardation spectrum likewise ([`box_spectrum_branches`]). A case holds the data
 //! as a [`Rheology`]; [`Rheology::model`] is the one place that picks the
 //! implementation, and [`PRESETS`] the one list that maps a case-file name to its
 //! keys and its constructor (docs/architecture.md, "How to add a layer rheology").
 
+mod box_spectrum;
 mod burgers;
 mod creep_form;
 mod fractional_zener;
@@ -24,6 +25,7 @@ mod prony;
 mod relaxation_prony;
 mod zener;
 
+pub use box_spectrum::{box_spectrum_branch_count, box_spectrum_branches, BOX_SPACING};
 pub use creep_form::{CreepForm, Flow, RelaxationBranch, RetardationBranch};
 pub use fractional_zener::fractional_zener_branches;
 pub use keys::{KeyKind, KeyReader, KeyValue};
@@ -37,7 +39,7 @@ pub const MAX_BRANCHES: usize = 1000;
 /// The rheology presets a case file can name, in the order error messages list
 /// them; the first is the default. This is the one registration list: a new preset
 /// adds its `PRESET` here.
-pub const PRESETS: [Preset; 7] = [
+pub const PRESETS: [Preset; 8] = [
     maxwell::PRESET,
     kelvin_voigt::PRESET,
     zener::PRESET,
@@ -45,6 +47,7 @@ pub const PRESETS: [Preset; 7] = [
     prony::PRESET,
     relaxation_prony::PRESET,
     fractional_zener::PRESET,
+    box_spectrum::PRESET,
 ];
 
 /// A preset as a case file names it: its name, its keys and how to build it from
@@ -259,6 +262,19 @@ pub enum Rheology {
         /// Number of branches of the discretisation, 2 ..= 1000.
         branch_count: usize,
     },
+    /// A box retardation spectrum: `C1` spread evenly over ln(time) from `tau1` to
+    /// `tau2`, after a glassy spring; discretised into Kelvin–Voigt branches at most
+    /// [`BOX_SPACING`] apart in ln(time).
+    BoxSpectrum {
+        /// C_g >= 0.
+        glassy_compliance: f64,
+        /// C1 (the relaxed compliance is C_g + C1).
+        compliance: f64,
+        /// tau1.
+        shortest_time: f64,
+        /// tau2 >= tau1 (equal: the Zener body).
+        longest_time: f64,
+    },
 }
 
 impl Rheology {
@@ -328,6 +344,17 @@ impl Rheology {
                 retardation_time,
                 order,
                 branch_count,
+            }),
+            &Rheology::BoxSpectrum {
+                glassy_compliance,
+                compliance,
+                shortest_time,
+                longest_time,
+            } => Box::new(box_spectrum::BoxSpectrum {
+                glassy_compliance,
+                compliance,
+                shortest_time,
+                longest_time,
             }),
         }
     }
@@ -427,6 +454,12 @@ mod tests {
                 retardation_time: 1.0,
                 order: 0.5,
                 branch_count: 10,
+            },
+            Rheology::BoxSpectrum {
+                glassy_compliance: 1.0,
+                compliance: 1.0,
+                shortest_time: 1.0,
+                longest_time: 10.0,
             },
         ];
         let mut names: Vec<&str> = all.iter().map(Rheology::name).collect();
