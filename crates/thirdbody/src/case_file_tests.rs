@@ -591,7 +591,20 @@ fn every_rheology_preset_parses_into_its_parameters() {
         "rheology = \"fractional_zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
          retardation_time = 3.0\norder = 0.5",
     ));
-    assert_eq!(f.rheology.creep_form().branches.len(), 24);
+    // Without branch_count the order chooses: for alpha = 0.5 the span holding all
+    // but 1e-4 of the spectrum is 4 ln(4e4 / pi) = 37.8 in ln(time), the spacing
+    // min(1, pi / 2) = 1, so 38 branches, made odd: 39.
+    assert_eq!(
+        f.rheology,
+        Rheology::FractionalZener {
+            glassy_compliance: 0.01,
+            compliance: 0.02,
+            retardation_time: 3.0,
+            order: 0.5,
+            branch_count: None
+        }
+    );
+    assert_eq!(f.rheology.creep_form().branches.len(), 39);
     // Maxwell is the default and the table law gives a Kelvin–Voigt layer its
     // compliance.
     let t = layer_of(&with_layer(

@@ -269,7 +269,7 @@ fn a_one_branch_prony_layer_is_the_zener_layer() {
                     compliance: 0.015,
                     retardation_time: 1.0,
                     order: 1.0,
-                    branch_count: 10,
+                    branch_count: Some(10),
                 },
                 law.clone(),
                 3e-3,
@@ -338,7 +338,7 @@ fn every_preset_agrees_with_the_dense_reference() {
             compliance: 0.012,
             retardation_time: 10.0,
             order: 0.5,
-            branch_count: 12,
+            branch_count: Some(12),
         },
     ));
     for (law_name, law) in laws() {

@@ -323,7 +323,7 @@ fn cases() -> Vec<(String, Case)> {
                     compliance: 0.01,
                     retardation_time: 1.0,
                     order: 0.5,
-                    branch_count: 12,
+                    branch_count: Some(12),
                 },
                 ComplianceLaw::Table(
                     Table::new(vec![0.0, 0.004, 0.01], vec![0.02, 0.015, 0.012]).unwrap(),

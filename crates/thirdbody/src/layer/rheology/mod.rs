@@ -27,7 +27,9 @@ mod zener;
 
 pub use box_spectrum::{box_spectrum_branch_count, box_spectrum_branches, BOX_SPACING};
 pub use creep_form::{CreepForm, Flow, RelaxationBranch, RetardationBranch};
-pub use fractional_zener::fractional_zener_branches;
+pub use fractional_zener::{
+    fractional_zener_branch_count, fractional_zener_branches, fractional_zener_spacing,
+};
 pub use keys::{KeyKind, KeyReader, KeyValue};
 pub use relaxation_prony::relaxation_to_creep;
 
@@ -249,7 +251,8 @@ pub enum Rheology {
         branches: Vec<RelaxationBranch>,
     },
     /// The fractional Zener body `C*(omega) = C_g + C1 / (1 + (i omega tau)^alpha)`,
-    /// discretised into `branch_count` Kelvin–Voigt branches.
+    /// discretised into Kelvin–Voigt branches (by default as many as the order
+    /// needs: [`fractional_zener_branch_count`]).
     FractionalZener {
         /// C_g >= 0.
         glassy_compliance: f64,
@@ -259,8 +262,9 @@ pub enum Rheology {
         retardation_time: f64,
         /// alpha, 0 < alpha <= 1 (1: the Zener body).
         order: f64,
-        /// Number of branches of the discretisation, 2 ..= 1000.
-        branch_count: usize,
+        /// Number of branches of the discretisation, 2 ..= 1000; `None`: the
+        /// order's rule.
+        branch_count: Option<usize>,
     },
     /// A box retardation spectrum: `C1` spread evenly over ln(time) from `tau1` to
     /// `tau2`, after a glassy spring; discretised into Kelvin–Voigt branches at most
@@ -453,7 +457,7 @@ mod tests {
                 compliance: 1.0,
                 retardation_time: 1.0,
                 order: 0.5,
-                branch_count: 10,
+                branch_count: Some(10),
             },
             Rheology::BoxSpectrum {
                 glassy_compliance: 1.0,
