@@ -6,7 +6,7 @@
 //! exactly (then the contact problem is symmetric and conjugate gradients apply), the
 //! compliance field to report, and a diagnosis when the model has no unique solution.
 //! Every rheology preset ([`rheology`]: the paper's nonlinear Maxwell layer of eq. 2,
-//! Kelvin–Voigt, Zener, Burgers, Prony series, fractional Zener) is one
+//! Kelvin–Voigt, Zener, Burgers, Prony series, fractional Zener, box spectrum) is one
 //! implementation of [`rheology::RheologyModel`] in its own file and reduces to one
 //! creep form, integrated along the rows by [`viscoelastic`]; [`Layer::on_grid`]
 //! builds that response. The pressure dependence `C[p]` is apart, in [`law`].

@@ -145,7 +145,7 @@ fn half_span(alpha: f64) -> f64 {
 }
 
 /// The rule's spacing of the branches in ln(time) for the order `alpha < 1`:
-/// `min(1, pi (1 - alpha) / (2 alpha))` up to [`NARROW_ORDER`] (half the distance
+/// `min(1, pi (1 - alpha) / (2 alpha))` up to alpha = 0.9 (half the distance
 /// of the spectrum's poles from the real axis), `0.25 + 1.1 (1 - alpha)` above.
 pub fn fractional_zener_spacing(alpha: f64) -> f64 {
     if alpha <= NARROW_ORDER {
