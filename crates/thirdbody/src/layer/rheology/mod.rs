@@ -7,12 +7,13 @@
 //! ([`super::law`]). Each named preset is one value implementing [`RheologyModel`],
 //! in its own file: the paper's Maxwell body (eq. 2, `maxwell.rs`), Kelvin–Voigt,
 //! Zener (standard linear solid), Burgers, a Prony series of compliances, a Prony
-//! series of relaxation stiffnesses (converted exactly, [`relaxation_to_creep`]),, a
+//! series of relaxation stiffnesses (converted exactly, [`relaxation_to_creep`]), a
 //! fractional Zener body discretised into branches ([`fractional_zener_branches`])
-//! and a box retardation spectrum likewise ([`box_spectrum_branches`]). A case holds the data
-//! as a [`Rheology`]; [`Rheology::model`] is the one place that picks the
-//! implementation, and [`PRESETS`] the one list that maps a case-file name to its
-//! keys and its constructor (docs/architecture.md, "How to add a layer rheology").
+//! and a box retardation spectrum likewise ([`box_spectrum_branches`]). A case
+//! holds the data as a [`Rheology`]; [`Rheology::model`] is the one place that picks
+//! the implementation, and [`PRESETS`] the one list that maps a case-file name to
+//! its keys and its constructor (docs/architecture.md, "How to add a layer
+//! rheology").
 
 mod box_spectrum;
 mod burgers;
