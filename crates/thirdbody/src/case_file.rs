@@ -11,14 +11,14 @@
 //! library never touches the filesystem: a height map is loaded by a callback that
 //! the caller supplies.
 
-use serde::Deserialize;
+use serde::de::{self, DeserializeSeed, MapAccess, Visitor};
+use serde::{Deserialize, Deserializer};
 
 use crate::case::{Body, Case, Elastic, GridSpec, Loading, Units};
 use crate::contact::SolverParams;
 use crate::error::{Error, Result};
-use crate::layer::{
-    ComplianceLaw, Integration, Layer, RelaxationBranch, RetardationBranch, Rheology, Table,
-};
+use crate::layer::rheology::{preset_keys, KeyKind, KeyReader, KeyValue, Preset, PRESETS};
+use crate::layer::{ComplianceLaw, Integration, Layer, Rheology, Table};
 use crate::shape::{HeightMap, Slider};
 use crate::stress::{SectionKind, StressRequest};
 
@@ -88,19 +88,6 @@ struct RawCoating {
     thickness: Option<f64>,
 }
 
-#[derive(Debug, Default, Clone, Copy, Deserialize)]
-#[serde(rename_all = "snake_case")]
-enum RawRheology {
-    #[default]
-    Maxwell,
-    KelvinVoigt,
-    Zener,
-    Burgers,
-    Prony,
-    RelaxationProny,
-    FractionalZener,
-}
-
 #[derive(Debug, Default, Deserialize)]
 #[serde(rename_all = "snake_case")]
 enum RawLaw {
@@ -118,30 +105,155 @@ enum RawIntegration {
     Secant,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// `[layer]`: the law's keys, the rheology's name, and the keys of the rheology
+/// presets ([`PRESETS`]), each read as the preset declares it. Unknown keys are
+/// errors at their line, as `deny_unknown_fields` gives them elsewhere.
+#[derive(Debug, Default)]
 struct RawLayer {
-    #[serde(default)]
-    rheology: RawRheology,
-    compliance: Option<f64>,
-    relaxation_time: Option<f64>,
-    glassy_compliance: Option<f64>,
-    retardation_time: Option<f64>,
-    branch_compliances: Option<Vec<f64>>,
-    branch_times: Option<Vec<f64>>,
-    viscosity: Option<f64>,
-    equilibrium_stiffness: Option<f64>,
-    branch_stiffnesses: Option<Vec<f64>>,
-    order: Option<f64>,
-    branch_count: Option<usize>,
-    #[serde(default)]
+    rheology: Option<&'static Preset>,
     law: RawLaw,
     delta: Option<f64>,
     p0: Option<f64>,
     pressures: Option<Vec<f64>>,
     compliances: Option<Vec<f64>>,
-    #[serde(default)]
     integration: RawIntegration,
+    /// The rheology keys given, in file order.
+    rheology_keys: Vec<(&'static str, KeyValue)>,
+}
+
+/// The keys of `[layer]` that are not a rheology preset's.
+const LAW_KEYS: [&str; 6] = [
+    "law",
+    "delta",
+    "p0",
+    "pressures",
+    "compliances",
+    "integration",
+];
+
+/// A key of `[layer]`.
+enum LayerKey {
+    Rheology,
+    Law,
+    Delta,
+    P0,
+    Pressures,
+    Compliances,
+    Integration,
+    Preset(&'static str, KeyKind),
+}
+
+/// Reads a `[layer]` key; an unknown one is an error at its line.
+struct LayerKeySeed;
+
+impl<'de> DeserializeSeed<'de> for LayerKeySeed {
+    type Value = LayerKey;
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> std::result::Result<LayerKey, D::Error> {
+        d.deserialize_identifier(self)
+    }
+}
+
+impl Visitor<'_> for LayerKeySeed {
+    type Value = LayerKey;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a [layer] key")
+    }
+    fn visit_str<E: de::Error>(self, key: &str) -> std::result::Result<LayerKey, E> {
+        Ok(match key {
+            "rheology" => LayerKey::Rheology,
+            "law" => LayerKey::Law,
+            "delta" => LayerKey::Delta,
+            "p0" => LayerKey::P0,
+            "pressures" => LayerKey::Pressures,
+            "compliances" => LayerKey::Compliances,
+            "integration" => LayerKey::Integration,
+            _ => {
+                let all = preset_keys();
+                let Some(&(key, kind)) = all.iter().find(|(k, _)| *k == key) else {
+                    let names = std::iter::once("rheology")
+                        .chain(all.iter().map(|(k, _)| *k))
+                        .chain(LAW_KEYS);
+                    return Err(E::custom(format!(
+                        "unknown field `{key}`, expected {}",
+                        one_of(names)
+                    )));
+                };
+                LayerKey::Preset(key, kind)
+            }
+        })
+    }
+}
+
+/// serde's wording of a list of allowed names: "one of `a`, `b`, `c`".
+fn one_of<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let quoted: Vec<String> = names.map(|n| format!("`{n}`")).collect();
+    format!("one of {}", quoted.join(", "))
+}
+
+/// Reads `rheology = "<name>"`; a name no preset has is an error at its line.
+struct PresetSeed;
+
+impl<'de> DeserializeSeed<'de> for PresetSeed {
+    type Value = &'static Preset;
+    fn deserialize<D: Deserializer<'de>>(
+        self,
+        d: D,
+    ) -> std::result::Result<&'static Preset, D::Error> {
+        d.deserialize_str(self)
+    }
+}
+
+impl Visitor<'_> for PresetSeed {
+    type Value = &'static Preset;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("the name of a rheology preset")
+    }
+    fn visit_str<E: de::Error>(self, name: &str) -> std::result::Result<&'static Preset, E> {
+        Preset::named(name).ok_or_else(|| {
+            E::custom(format!(
+                "unknown variant `{name}`, expected {}",
+                one_of(PRESETS.iter().map(|p| p.name))
+            ))
+        })
+    }
+}
+
+impl<'de> Deserialize<'de> for RawLayer {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<RawLayer, D::Error> {
+        d.deserialize_map(RawLayerVisitor)
+    }
+}
+
+struct RawLayerVisitor;
+
+impl<'de> Visitor<'de> for RawLayerVisitor {
+    type Value = RawLayer;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("the [layer] table")
+    }
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> std::result::Result<RawLayer, A::Error> {
+        let mut l = RawLayer::default();
+        while let Some(key) = map.next_key_seed(LayerKeySeed)? {
+            match key {
+                LayerKey::Rheology => l.rheology = Some(map.next_value_seed(PresetSeed)?),
+                LayerKey::Law => l.law = map.next_value()?,
+                LayerKey::Delta => l.delta = Some(map.next_value()?),
+                LayerKey::P0 => l.p0 = Some(map.next_value()?),
+                LayerKey::Pressures => l.pressures = Some(map.next_value()?),
+                LayerKey::Compliances => l.compliances = Some(map.next_value()?),
+                LayerKey::Integration => l.integration = map.next_value()?,
+                LayerKey::Preset(key, kind) => {
+                    let value = match kind {
+                        KeyKind::Number => KeyValue::Number(map.next_value()?),
+                        KeyKind::Numbers => KeyValue::Numbers(map.next_value()?),
+                        KeyKind::Count => KeyValue::Count(map.next_value()?),
+                    };
+                    l.rheology_keys.push((key, value));
+                }
+            }
+        }
+        Ok(l)
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -427,6 +539,8 @@ fn slider_shape(
 }
 
 fn layer(l: RawLayer) -> Result<Layer> {
+    let preset = l.rheology.unwrap_or_else(Preset::default_preset);
+    let given = |key: &str| l.rheology_keys.iter().any(|(k, _)| *k == key);
     let law = match l.law {
         RawLaw::Linear => {
             let why = "only law = \"sigmoid\" uses delta and p0, only law = \"table\" uses \
@@ -450,9 +564,9 @@ fn layer(l: RawLayer) -> Result<Layer> {
             ComplianceLaw::Sigmoid { delta, p0 }
         }
         RawLaw::Table => {
-            if matches!(l.rheology, RawRheology::Maxwell | RawRheology::KelvinVoigt) {
+            if preset.compliance_from_table {
                 unused(
-                    l.compliance.is_some(),
+                    given("compliance"),
                     "layer.compliance",
                     "law = \"table\" takes its compliances from the table",
                 )?;
@@ -475,9 +589,29 @@ fn layer(l: RawLayer) -> Result<Layer> {
     };
     let table_compliance = match &law {
         ComplianceLaw::Table(t) => Some(t.compliances()[0]),
-        _ => None,
+        ComplianceLaw::Linear | ComplianceLaw::Sigmoid { .. } => None,
     };
-    let rheology = rheology(&l, table_compliance)?;
+    // The rheology's keys: those another preset takes are unused here.
+    let why = format!(
+        "rheology = \"{}\" takes only {}",
+        preset.name,
+        preset.key_names().join(", ")
+    );
+    for (key, _) in preset_keys() {
+        unused(
+            given(key) && !preset.takes(key),
+            &format!("layer.{key}"),
+            &why,
+        )?;
+    }
+    // Presets with one compliance (the paper's Maxwell layer, Kelvin–Voigt) take it
+    // from a table law.
+    let table_compliance = table_compliance.filter(|_| preset.compliance_from_table);
+    let rheology: Rheology = (preset.parse)(&KeyReader::new(
+        preset.name,
+        &l.rheology_keys,
+        table_compliance,
+    ))?;
     let integration = match l.integration {
         RawIntegration::Exact => Integration::Exact,
         RawIntegration::Secant => Integration::Secant,
@@ -487,222 +621,6 @@ fn layer(l: RawLayer) -> Result<Layer> {
         law,
         integration,
     })
-}
-
-/// The keys a rheology preset takes, in case-file order.
-fn rheology_keys(r: RawRheology) -> (&'static str, &'static [&'static str]) {
-    match r {
-        RawRheology::Maxwell => ("maxwell", &["compliance", "relaxation_time"]),
-        RawRheology::KelvinVoigt => ("kelvin_voigt", &["compliance", "retardation_time"]),
-        RawRheology::Zener => (
-            "zener",
-            &["glassy_compliance", "compliance", "retardation_time"],
-        ),
-        RawRheology::Burgers => (
-            "burgers",
-            &[
-                "glassy_compliance",
-                "relaxation_time",
-                "compliance",
-                "retardation_time",
-            ],
-        ),
-        RawRheology::Prony => (
-            "prony",
-            &[
-                "glassy_compliance",
-                "branch_compliances",
-                "branch_times",
-                "viscosity",
-            ],
-        ),
-        RawRheology::RelaxationProny => (
-            "relaxation_prony",
-            &[
-                "equilibrium_stiffness",
-                "branch_stiffnesses",
-                "branch_times",
-            ],
-        ),
-        RawRheology::FractionalZener => (
-            "fractional_zener",
-            &[
-                "glassy_compliance",
-                "compliance",
-                "retardation_time",
-                "order",
-                "branch_count",
-            ],
-        ),
-    }
-}
-
-/// Default number of branches of a fractional Zener layer.
-const FRACTIONAL_BRANCHES: usize = 24;
-
-fn rheology(l: &RawLayer, table_compliance: Option<f64>) -> Result<Rheology> {
-    let (name, keys) = rheology_keys(l.rheology);
-    let present = [
-        ("compliance", l.compliance.is_some()),
-        ("relaxation_time", l.relaxation_time.is_some()),
-        ("glassy_compliance", l.glassy_compliance.is_some()),
-        ("retardation_time", l.retardation_time.is_some()),
-        ("branch_compliances", l.branch_compliances.is_some()),
-        ("branch_times", l.branch_times.is_some()),
-        ("viscosity", l.viscosity.is_some()),
-        ("equilibrium_stiffness", l.equilibrium_stiffness.is_some()),
-        ("branch_stiffnesses", l.branch_stiffnesses.is_some()),
-        ("order", l.order.is_some()),
-        ("branch_count", l.branch_count.is_some()),
-    ];
-    for (key, given) in present {
-        let why = format!("rheology = \"{name}\" takes only {}", keys.join(", "));
-        unused(given && !keys.contains(&key), &format!("layer.{key}"), &why)?;
-    }
-    // Maxwell and Kelvin–Voigt layers with a table law take their one compliance
-    // from the table, as the paper's layer always has.
-    let main_compliance = |what: &str| -> Result<f64> {
-        match table_compliance {
-            Some(c0) if matches!(l.rheology, RawRheology::Maxwell | RawRheology::KelvinVoigt) => {
-                unused(
-                    l.compliance.is_some(),
-                    "layer.compliance",
-                    "law = \"table\" takes its compliances from the table",
-                )?;
-                Ok(c0)
-            }
-            _ => need(
-                l.compliance,
-                "layer.compliance",
-                &format!("a {name} layer needs {what} (> 0)"),
-            ),
-        }
-    };
-    let time = |value: Option<f64>, key: &str, what: &str| {
-        need(
-            value,
-            &format!("layer.{key}"),
-            &format!("a {name} layer needs {what} (> 0)"),
-        )
-    };
-    let glassy = || {
-        need(
-            l.glassy_compliance,
-            "layer.glassy_compliance",
-            &format!("a {name} layer needs its glassy (instantaneous) compliance C_g"),
-        )
-    };
-    Ok(match l.rheology {
-        RawRheology::Maxwell => Rheology::Maxwell {
-            compliance: main_compliance("its compliance C0")?,
-            relaxation_time: need(
-                l.relaxation_time,
-                "layer.relaxation_time",
-                "a [layer] needs its relaxation time T (> 0)",
-            )?,
-        },
-        RawRheology::KelvinVoigt => Rheology::KelvinVoigt {
-            compliance: main_compliance("its compliance C1")?,
-            retardation_time: time(
-                l.retardation_time,
-                "retardation_time",
-                "its retardation time",
-            )?,
-        },
-        RawRheology::Zener => Rheology::Zener {
-            glassy_compliance: glassy()?,
-            compliance: main_compliance("the compliance C1 of its Kelvin–Voigt branch")?,
-            retardation_time: time(
-                l.retardation_time,
-                "retardation_time",
-                "its retardation time",
-            )?,
-        },
-        RawRheology::Burgers => Rheology::Burgers {
-            glassy_compliance: glassy()?,
-            relaxation_time: time(
-                l.relaxation_time,
-                "relaxation_time",
-                "the relaxation time T of its Maxwell element",
-            )?,
-            compliance: main_compliance("the compliance C1 of its Kelvin–Voigt branch")?,
-            retardation_time: time(
-                l.retardation_time,
-                "retardation_time",
-                "its retardation time",
-            )?,
-        },
-        RawRheology::Prony => {
-            let compliances = need(
-                l.branch_compliances.clone(),
-                "layer.branch_compliances",
-                "a prony layer needs the compliances of its Kelvin–Voigt branches (a list)",
-            )?;
-            let times = branch_times(l, compliances.len(), "branch_compliances")?;
-            Rheology::Prony {
-                glassy_compliance: glassy()?,
-                branches: compliances
-                    .into_iter()
-                    .zip(times)
-                    .map(|(compliance, time)| RetardationBranch { compliance, time })
-                    .collect(),
-                viscosity: l.viscosity,
-            }
-        }
-        RawRheology::RelaxationProny => {
-            let stiffnesses = need(
-                l.branch_stiffnesses.clone(),
-                "layer.branch_stiffnesses",
-                "a relaxation_prony layer needs the stiffnesses of its Maxwell branches (a list)",
-            )?;
-            let times = branch_times(l, stiffnesses.len(), "branch_stiffnesses")?;
-            Rheology::RelaxationProny {
-                equilibrium_stiffness: need(
-                    l.equilibrium_stiffness,
-                    "layer.equilibrium_stiffness",
-                    "a relaxation_prony layer needs its equilibrium stiffness K_inf (>= 0; 0 \
-                     for a layer that flows)",
-                )?,
-                branches: stiffnesses
-                    .into_iter()
-                    .zip(times)
-                    .map(|(stiffness, time)| RelaxationBranch { stiffness, time })
-                    .collect(),
-            }
-        }
-        RawRheology::FractionalZener => Rheology::FractionalZener {
-            glassy_compliance: glassy()?,
-            compliance: main_compliance("the compliance C1 of its retarded part")?,
-            retardation_time: time(
-                l.retardation_time,
-                "retardation_time",
-                "its retardation time",
-            )?,
-            order: need(
-                l.order,
-                "layer.order",
-                "a fractional_zener layer needs its order alpha (0 < alpha <= 1)",
-            )?,
-            branch_count: l.branch_count.unwrap_or(FRACTIONAL_BRANCHES),
-        },
-    })
-}
-
-/// `branch_times`, one per entry of the list `key`.
-fn branch_times(l: &RawLayer, n: usize, key: &str) -> Result<Vec<f64>> {
-    let times = need(
-        l.branch_times.clone(),
-        "layer.branch_times",
-        &format!("one time (> 0) per entry of layer.{key}"),
-    )?;
-    if times.len() != n {
-        return Err(Error::invalid(
-            "layer.branch_times",
-            format!("{} times for {n} branches", times.len()),
-            &format!("one time per entry of layer.{key}"),
-        ));
-    }
-    Ok(times)
 }
 
 fn stress_request(raw: RawStress) -> Result<StressRequest> {

@@ -591,7 +591,20 @@ fn every_rheology_preset_parses_into_its_parameters() {
         "rheology = \"fractional_zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
          retardation_time = 3.0\norder = 0.5",
     ));
-    assert_eq!(f.rheology.creep_form().branches.len(), 24);
+    // Without branch_count the order chooses: for alpha = 0.5 the span holding all
+    // but 1e-4 of the spectrum is 4 ln(4e4 / pi) = 37.8 in ln(time), the spacing
+    // min(1, pi / 2) = 1, so 38 branches, made odd: 39.
+    assert_eq!(
+        f.rheology,
+        Rheology::FractionalZener {
+            glassy_compliance: 0.01,
+            compliance: 0.02,
+            retardation_time: 3.0,
+            order: 0.5,
+            branch_count: None
+        }
+    );
+    assert_eq!(f.rheology.creep_form().branches.len(), 39);
     // Maxwell is the default and the table law gives a Kelvin–Voigt layer its
     // compliance.
     let t = layer_of(&with_layer(
@@ -680,4 +693,66 @@ fn bad_rheology_parameters_are_errors_naming_the_key() {
         &with_layer("rheology = \"plastic\"\ncompliance = 0.02"),
         &["rheology", "kelvin_voigt"],
     );
+}
+
+#[test]
+fn a_box_spectrum_parses_and_rejects_the_keys_it_does_not_take() {
+    let b = layer_of(&with_layer(
+        "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+         shortest_time = 0.1\nlongest_time = 100",
+    ));
+    assert_eq!(
+        b.rheology,
+        Rheology::BoxSpectrum {
+            glassy_compliance: 0.01,
+            compliance: 0.02,
+            shortest_time: 0.1,
+            longest_time: 100.0
+        }
+    );
+    let e = error_naming(
+        &with_layer(
+            "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             shortest_time = 0.1\nlongest_time = 100\nretardation_time = 1",
+        ),
+        &[
+            "layer.retardation_time",
+            "box_spectrum",
+            "shortest_time, longest_time",
+        ],
+    );
+    assert!(matches!(e, Error::UnusedField { .. }), "{e:?}");
+    error_naming(
+        &with_layer(
+            "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             shortest_time = 0.1",
+        ),
+        &["layer.longest_time", "box_spectrum"],
+    );
+    error_naming(
+        &with_layer(
+            "rheology = \"box_spectrum\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             shortest_time = 10\nlongest_time = 1",
+        ),
+        &["layer.longest_time", "shortest_time <= longest_time"],
+    );
+    // Another preset's key is unused for a Zener layer, and a key of no preset is
+    // unknown at its line.
+    error_naming(
+        &with_layer(
+            "rheology = \"zener\"\nglassy_compliance = 0.01\ncompliance = 0.02\n\
+             retardation_time = 1\nlongest_time = 3",
+        ),
+        &["layer.longest_time", "zener"],
+    );
+    let e = error_naming(
+        &with_layer("rheology = \"zener\"\nglassy_compliance = 0.01\nlongest_tme = 3"),
+        &[
+            "(layer.longest_tme)",
+            "unknown field",
+            "`longest_time`",
+            "`integration`",
+        ],
+    );
+    assert!(matches!(e, Error::Parse(_)), "{e:?}");
 }

@@ -10,13 +10,14 @@
 //! number has the same significand), so a case already written with R = E2 = T = 1,
 //! like the paper's, is solved bit for bit as before, and converting back adds no
 //! rounding. Lengths are R for a sphere, `sqrt(Rx Ry)` for an ellipsoid and the
-//! map's extent for a height map; T is the layer's flow time (its Maxwell T), else
-//! its first retardation time, else 1 (a layer-free case has no time).
+//! map's extent for a height map; T is the time the layer's rheology states
+//! ([`crate::layer::RheologyModel::time_scale`]: the Maxwell T, a retardation time),
+//! 1 without a layer.
 
 use crate::case::{Body, Case, Elastic};
 use crate::error::{Error, Result};
 use crate::grid::Grid;
-use crate::layer::{ComplianceLaw, Layer, RelaxationBranch, RetardationBranch, Rheology};
+use crate::layer::{ComplianceLaw, Layer, SolverUnits};
 use crate::shape::{HeightMap, Slider};
 use crate::solution::Solution;
 
@@ -61,13 +62,7 @@ impl Scales {
             Slider::HeightMap(m) => m.cell_size * m.nx.max(m.ny) as f64,
             other => other.equivalent_radius(),
         };
-        let time = case.layer.as_ref().map_or(1.0, |layer| {
-            let form = layer.rheology.creep_form();
-            form.flow
-                .map(|f| f.time)
-                .or_else(|| form.branches.first().map(|b| b.time))
-                .unwrap_or(1.0)
-        });
+        let time = (case.layer.as_ref()).map_or(1.0, |layer| layer.rheology.time_scale());
         Scales {
             length: power_of_two_near(length),
             modulus: power_of_two_near(case.body.substrate().young),
@@ -107,18 +102,9 @@ impl Scales {
         p / self.modulus
     }
 
-    fn time(&self, t: f64) -> f64 {
-        t / self.time
-    }
-
     /// A compliance (length per pressure).
     fn compliance(&self, c: f64) -> f64 {
         c / self.length * self.modulus
-    }
-
-    /// A stiffness (pressure per length).
-    fn stiffness(&self, k: f64) -> f64 {
-        k / self.modulus * self.length
     }
 
     /// A force (pressure times area), divided one factor at a time so that no
@@ -168,85 +154,12 @@ impl Scales {
         }
     }
 
-    fn retardation(&self, b: &RetardationBranch) -> RetardationBranch {
-        RetardationBranch {
-            compliance: self.compliance(b.compliance),
-            time: self.time(b.time),
-        }
-    }
-
-    fn rheology(&self, rheology: &Rheology) -> Rheology {
-        match rheology {
-            Rheology::Maxwell {
-                compliance,
-                relaxation_time,
-            } => Rheology::Maxwell {
-                compliance: self.compliance(*compliance),
-                relaxation_time: self.time(*relaxation_time),
-            },
-            Rheology::KelvinVoigt {
-                compliance,
-                retardation_time,
-            } => Rheology::KelvinVoigt {
-                compliance: self.compliance(*compliance),
-                retardation_time: self.time(*retardation_time),
-            },
-            Rheology::Zener {
-                glassy_compliance,
-                compliance,
-                retardation_time,
-            } => Rheology::Zener {
-                glassy_compliance: self.compliance(*glassy_compliance),
-                compliance: self.compliance(*compliance),
-                retardation_time: self.time(*retardation_time),
-            },
-            Rheology::Burgers {
-                glassy_compliance,
-                relaxation_time,
-                compliance,
-                retardation_time,
-            } => Rheology::Burgers {
-                glassy_compliance: self.compliance(*glassy_compliance),
-                relaxation_time: self.time(*relaxation_time),
-                compliance: self.compliance(*compliance),
-                retardation_time: self.time(*retardation_time),
-            },
-            Rheology::Prony {
-                glassy_compliance,
-                branches,
-                viscosity,
-            } => Rheology::Prony {
-                glassy_compliance: self.compliance(*glassy_compliance),
-                branches: branches.iter().map(|b| self.retardation(b)).collect(),
-                // eta: pressure times time per length.
-                viscosity: viscosity.map(|eta| self.time(self.stiffness(eta))),
-            },
-            Rheology::RelaxationProny {
-                equilibrium_stiffness,
-                branches,
-            } => Rheology::RelaxationProny {
-                equilibrium_stiffness: self.stiffness(*equilibrium_stiffness),
-                branches: branches
-                    .iter()
-                    .map(|b| RelaxationBranch {
-                        stiffness: self.stiffness(b.stiffness),
-                        time: self.time(b.time),
-                    })
-                    .collect(),
-            },
-            Rheology::FractionalZener {
-                glassy_compliance,
-                compliance,
-                retardation_time,
-                order,
-                branch_count,
-            } => Rheology::FractionalZener {
-                glassy_compliance: self.compliance(*glassy_compliance),
-                compliance: self.compliance(*compliance),
-                retardation_time: self.time(*retardation_time),
-                order: *order,
-                branch_count: *branch_count,
-            },
+    /// The units a rheology is scaled to.
+    fn rheology_units(&self) -> SolverUnits {
+        SolverUnits {
+            length: self.length,
+            stress: self.modulus,
+            time: self.time,
         }
     }
 
@@ -266,7 +179,7 @@ impl Scales {
             )?),
         };
         Ok(Layer {
-            rheology: self.rheology(&layer.rheology),
+            rheology: layer.rheology.scaled(&self.rheology_units()),
             law,
             integration: layer.integration,
         })

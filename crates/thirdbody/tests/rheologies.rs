@@ -61,6 +61,15 @@ fn presets() -> Vec<(&'static str, Rheology)> {
                 viscosity: None,
             },
         ),
+        (
+            "box_spectrum",
+            Rheology::BoxSpectrum {
+                glassy_compliance: 0.005,
+                compliance: 0.015,
+                shortest_time: 0.2,
+                longest_time: 2e3,
+            },
+        ),
     ]
 }
 
@@ -263,7 +272,7 @@ fn a_one_branch_prony_layer_is_the_zener_layer() {
                     compliance: 0.015,
                     retardation_time: 1.0,
                     order: 1.0,
-                    branch_count: 10,
+                    branch_count: Some(10),
                 },
                 law.clone(),
                 3e-3,
@@ -272,6 +281,22 @@ fn a_one_branch_prony_layer_is_the_zener_layer() {
             1e-12,
         );
         assert_eq!(z.pressure, f.pressure);
+        // So is a box spectrum of zero width.
+        let b = solve_to(
+            &with_layer(
+                Rheology::BoxSpectrum {
+                    glassy_compliance: 0.01,
+                    compliance: 0.015,
+                    shortest_time: 1.0,
+                    longest_time: 1.0,
+                },
+                law.clone(),
+                3e-3,
+                48,
+            ),
+            1e-12,
+        );
+        assert_eq!(z.pressure, b.pressure);
         let relaxation = Rheology::RelaxationProny {
             equilibrium_stiffness: 1.0 / 0.025,
             branches: vec![RelaxationBranch {
@@ -316,7 +341,7 @@ fn every_preset_agrees_with_the_dense_reference() {
             compliance: 0.012,
             retardation_time: 10.0,
             order: 0.5,
-            branch_count: 12,
+            branch_count: Some(12),
         },
     ));
     for (law_name, law) in laws() {

@@ -155,6 +155,17 @@ fn rescale(case: &Case, f: &Factors) -> Case {
                 order: *order,
                 branch_count: *branch_count,
             },
+            Rheology::BoxSpectrum {
+                glassy_compliance,
+                compliance,
+                shortest_time,
+                longest_time,
+            } => Rheology::BoxSpectrum {
+                glassy_compliance: cc(*glassy_compliance),
+                compliance: cc(*compliance),
+                shortest_time: t(*shortest_time),
+                longest_time: t(*longest_time),
+            },
         };
         let law = match &l.law {
             ComplianceLaw::Linear => ComplianceLaw::Linear,
@@ -312,11 +323,26 @@ fn cases() -> Vec<(String, Case)> {
                     compliance: 0.01,
                     retardation_time: 1.0,
                     order: 0.5,
-                    branch_count: 12,
+                    branch_count: Some(12),
                 },
                 ComplianceLaw::Table(
                     Table::new(vec![0.0, 0.004, 0.01], vec![0.02, 0.015, 0.012]).unwrap(),
                 ),
+            ),
+        ),
+        (
+            "box_spectrum_sigmoid".into(),
+            with_layer(
+                Rheology::BoxSpectrum {
+                    glassy_compliance: 0.01,
+                    compliance: 0.01,
+                    shortest_time: 0.1,
+                    longest_time: 30.0,
+                },
+                ComplianceLaw::Sigmoid {
+                    delta: 0.5,
+                    p0: 0.001,
+                },
             ),
         ),
     ]);
@@ -517,7 +543,7 @@ proptest! {
 
     #[test]
     fn every_result_scales_with_its_units(
-        k in 0usize..14,
+        k in 0usize..15,
         log_length in -6.0f64..6.0,
         log_modulus in -6.0f64..12.0,
         log_time in -6.0f64..6.0,
@@ -538,7 +564,7 @@ proptest! {
 #[test]
 fn every_case_of_the_test_is_drawn() {
     // The strategy's index range covers every case.
-    assert_eq!(references().len(), 14);
+    assert_eq!(references().len(), 15);
 }
 
 /// The case: Hertz with R and E2 written as 1e-100 (load 5e-306) failed with

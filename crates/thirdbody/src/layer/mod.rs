@@ -5,11 +5,11 @@
 //! Jacobian (applied, and solved row-wise as a preconditioner), whether `w3 = c p`
 //! exactly (then the contact problem is symmetric and conjugate gradients apply), the
 //! compliance field to report, and a diagnosis when the model has no unique solution.
-//! Each rheology family is one implementation in its own file; [`Layer::on_grid`] is
-//! the one place that picks it. Today every preset ([`rheology`]: the paper's
-//! nonlinear Maxwell layer of eq. 2, Kelvin–Voigt, Zener, Burgers, Prony series,
-//! fractional Zener) reduces to one creep form, integrated by [`viscoelastic`]. The
-//! pressure dependence `C[p]` is apart, in [`law`].
+//! Every rheology preset ([`rheology`]: the paper's nonlinear Maxwell layer of eq. 2,
+//! Kelvin–Voigt, Zener, Burgers, Prony series, fractional Zener, box spectrum) is one
+//! implementation of [`rheology::RheologyModel`] in its own file and reduces to one
+//! creep form, integrated along the rows by [`viscoelastic`]; [`Layer::on_grid`]
+//! builds that response. The pressure dependence `C[p]` is apart, in [`law`].
 //!
 //! Conventions (docs/architecture.md): material enters the window at its largest x and
 //! moves in -x, so a layer's response is causal along each row from the leading edge;
@@ -20,7 +20,9 @@ pub mod rheology;
 pub mod viscoelastic;
 
 pub use law::{ComplianceLaw, LawValue, Table};
-pub use rheology::{CreepForm, Flow, RelaxationBranch, RetardationBranch, Rheology};
+pub use rheology::{
+    CreepForm, Flow, RelaxationBranch, RetardationBranch, Rheology, RheologyModel, SolverUnits,
+};
 pub use viscoelastic::{ViscoelasticJacobian, ViscoelasticRows};
 
 use crate::convolution::Parallelism;
@@ -195,17 +197,15 @@ impl Layer {
     }
 
     /// The compliance `C[0]` the law is evaluated with: a table's first compliance;
-    /// else the Maxwell or Kelvin–Voigt compliance (so that the paper's layer is
-    /// computed exactly as eq. 8 writes it), 1 for the other presets (whose parts
-    /// carry their own compliances).
+    /// else the rheology's own ([`rheology::RheologyModel::reference_compliance`]:
+    /// the Maxwell or Kelvin–Voigt compliance, so that the paper's layer is computed
+    /// exactly as eq. 8 writes it; 1 for presets whose parts carry their own).
     pub fn reference_compliance(&self) -> f64 {
-        match (&self.law, &self.rheology) {
-            (ComplianceLaw::Table(t), _) => t.compliances()[0],
-            (
-                _,
-                Rheology::Maxwell { compliance, .. } | Rheology::KelvinVoigt { compliance, .. },
-            ) => *compliance,
-            _ => 1.0,
+        match &self.law {
+            ComplianceLaw::Table(t) => t.compliances()[0],
+            ComplianceLaw::Linear | ComplianceLaw::Sigmoid { .. } => {
+                self.rheology.reference_compliance()
+            }
         }
     }
 
