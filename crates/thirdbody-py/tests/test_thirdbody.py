@@ -243,22 +243,51 @@ def test_progress_reports_windows_and_iterations_and_its_exceptions_stop_the_sol
         thirdbody.solve(case, progress=stop_at_three)
 
 
-def _interrupted(script, seconds):
-    """Runs `script` in a fresh Python, sends SIGINT `seconds` after it prints
-    "started", and returns (stderr, seconds from the signal to the exit)."""
+# A child inherits an ignored SIGINT (a test runner started in the background, under
+# nohup or by some CI), and Python then installs no handler of its own: the child
+# restores Python's before anything else, as an interactive Python has it.
+_PYTHON_SIGINT = "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
+
+
+def _interrupted(script, seconds, timeout=60):
+    """Runs `script` in a fresh Python with Python's own SIGINT handler, sends SIGINT
+    `seconds` after it prints "started", and returns (stderr, seconds from the signal
+    to the exit)."""
     import signal
     import sys
     import time
 
-    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True)
-    assert child.stdout.readline().strip() == "started"
-    time.sleep(seconds)
-    assert child.poll() is None, "the work ended before the interrupt"
-    child.send_signal(signal.SIGINT)
-    sent = time.monotonic()
-    _, err = child.communicate(timeout=60)
+    child = subprocess.Popen([sys.executable, "-c", _PYTHON_SIGINT + script],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline().strip() == "started"
+        time.sleep(seconds)
+        assert child.poll() is None, "the work ended before the interrupt"
+        child.send_signal(signal.SIGINT)
+        sent = time.monotonic()
+        _, err = child.communicate(timeout=timeout)
+    finally:
+        child.kill()
+        child.wait()
     return err, time.monotonic() - sent
+
+
+def test_ctrl_c_reaches_the_child_when_the_runner_ignores_sigint():
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        pytest.skip("signal dispositions are set from the main thread")
+    # As under nohup or a background job: the runner ignores SIGINT, and so would a
+    # child started without restoring Python's handler (it would sleep out its 30 s).
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        err, after = _interrupted('import time\nprint("started", flush=True)\ntime.sleep(30)\n',
+                                  0.2, timeout=40)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert "KeyboardInterrupt" in err, err
+    assert after < 2.0, f"the child went on {after:.1f} s after Ctrl-C"
 
 
 def test_ctrl_c_stops_a_long_solve():
