@@ -5,20 +5,26 @@
 //! arrays laid out as the CLI's NPY files (rows along y). The front end does no
 //! physics: every number comes from the `thirdbody` crate.
 
+mod errors;
+mod interrupt;
+mod stresses;
+
 use std::ffi::OsString;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::{Duration, Instant};
+use std::sync::atomic::Ordering;
+use std::sync::Mutex;
+use std::time::Instant;
 
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyInt};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt};
 use thirdbody::case_file::{parse_case_file, CaseFile};
-use thirdbody::stress::{Section, Side, STORED_FIELD_NAMES};
-use thirdbody::Progress;
+use thirdbody::{KernelCache, Progress};
+
+use errors::{not_enough_memory, warn_all};
+use interrupt::{in_own_pool, interruptible};
 use thirdbody_cli::heightmap;
 use thirdbody_cli::sweep::folder::{Record, SweepFile};
 use thirdbody_cli::sweep::results::results_csv;
@@ -57,7 +63,12 @@ fn to_toml(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     if let Ok(b) = value.downcast::<PyBool>() {
         return Ok(toml::Value::Boolean(b.is_true()));
     }
-    if value.is_instance_of::<PyInt>() {
+    if is_numpy_bool(value) {
+        return Ok(toml::Value::Boolean(value.is_truthy()?));
+    }
+    // Any integer: Python's, numpy's (`np.int64`, a 0-d integer array), anything with
+    // `__index__`; never a float, which has none.
+    if value.is_instance_of::<PyInt>() || !value.is_instance_of::<PyFloat>() {
         if let Ok(i) = value.extract::<i64>() {
             return Ok(toml::Value::Integer(i));
         }
@@ -94,6 +105,14 @@ fn to_toml(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         "{key} = {} is not allowed: a number, a string, a boolean, a list or a dict",
         value.repr().map(|r| r.to_string()).unwrap_or_default()
     )))
+}
+
+/// Whether `value` is a numpy boolean (`np.True_`, which is no Python `bool`).
+fn is_numpy_bool(value: &Bound<'_, PyAny>) -> bool {
+    let kind = value.get_type();
+    let module = kind.module().map(|m| m.to_string()).unwrap_or_default();
+    let name = kind.name().map(|n| n.to_string()).unwrap_or_default();
+    module == "numpy" && (name == "bool_" || name == "bool")
 }
 
 /// `folder` (the working directory when `None` or empty) as an absolute path, so that
@@ -277,25 +296,6 @@ const DATASET_FIELDS: [(&str, &str, &str); 5] = [
     ("compliance", "m/Pa", "third-body layer's compliance C[p]"),
 ];
 
-/// A section's coordinates and fields as a dict (see `Solution.stresses`).
-fn section_dict<'py>(
-    py: Python<'py>,
-    field: &thirdbody::stress::StressField,
-) -> PyResult<Bound<'py, PyDict>> {
-    let out = PyDict::new(py);
-    out.set_item("x", PyArray1::from_slice(py, &field.xs))?;
-    out.set_item("y", PyArray1::from_slice(py, &field.ys))?;
-    out.set_item("z", PyArray1::from_slice(py, &field.zs))?;
-    let shape = [field.zs.len(), field.ys.len(), field.xs.len()];
-    for (name, values) in STORED_FIELD_NAMES.iter().zip(field.stored_fields()) {
-        let array = PyArray1::from_vec(py, values)
-            .reshape(shape)
-            .expect("a section's field has one value per point");
-        out.set_item(*name, array)?;
-    }
-    Ok(out)
-}
-
 impl Solution {
     /// The field `name` of [`DATASET_FIELDS`] (None when the case has no layer).
     fn named_field<'py>(
@@ -367,7 +367,10 @@ impl Solution {
     /// `(len(z), len(y), len(x))`, tension positive. `section` is `"xz"` (the plane
     /// `y`, at `depths`), `"surface"`, `"plane"` (depth `z`), `"block"` (every cell
     /// centre at `depths`) or `"interface"` (a coated body's interface, `side` =
-    /// `"coating"` or `"substrate"`). Runs without the GIL.
+    /// `"coating"` or `"substrate"`); `depths` a list or 1-D array. Refused with
+    /// `NotEnoughMemoryError` before it starts when the results (11 fields of 8 bytes
+    /// per point) would not fit in the memory available. Runs without the GIL, a few
+    /// depths at a time: Ctrl-C stops it and raises `KeyboardInterrupt`.
     #[pyo3(signature = (section, *, y=0.0, z=0.0, depths=None, side="coating"))]
     fn stresses<'py>(
         &self,
@@ -375,45 +378,22 @@ impl Solution {
         section: &str,
         y: f64,
         z: f64,
-        depths: Option<Vec<f64>>,
+        depths: Option<&Bound<'py, PyAny>>,
         side: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let need_depths = |what: &str| {
-            depths.clone().ok_or_else(|| {
-                PyValueError::new_err(format!("section {what} needs depths (a list of z >= 0)"))
-            })
-        };
-        let section = match section {
-            "xz" => Section::XzPlane {
-                y,
-                depths: need_depths("xz")?,
-            },
-            "surface" => Section::Plane { z: 0.0 },
-            "plane" => Section::Plane { z },
-            "block" => Section::Block {
-                depths: need_depths("block")?,
-            },
-            "interface" => Section::Interface {
-                side: match side {
-                    "coating" => Side::Coating,
-                    "substrate" => Side::Substrate,
-                    other => {
-                        return Err(PyValueError::new_err(format!(
-                            "side = {other:?} is not allowed: \"coating\" or \"substrate\""
-                        )))
-                    }
-                },
-            },
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "section = {other:?} is not allowed: \"xz\", \"surface\", \"plane\", \"block\" or \"interface\""
-                )))
-            }
-        };
-        let field = py
-            .allow_threads(|| in_own_pool(None, || self.solution.stresses(&section)))?
-            .map_err(to_py_error)?;
-        section_dict(py, &field)
+        let name = section;
+        let depths = depths.map(stresses::depths_from).transpose()?;
+        let section = stresses::section(name, y, z, depths, side)?;
+        let g = self.solution.grid;
+        stresses::check_memory(
+            py,
+            name,
+            &section,
+            [g.nx, g.ny],
+            thirdbody_cli::memory::available_bytes(),
+        )?;
+        let field = stresses::compute(py, &self.solution, &section)?.map_err(to_py_error)?;
+        stresses::section_dict(py, field)
     }
 
     /// The stresses of the case's `[stress]` section, computed with the solve as
@@ -431,7 +411,7 @@ impl Solution {
         })?;
         let out = PyDict::new(py);
         for (named, field) in &results.sections {
-            out.set_item(named.name(), section_dict(py, field)?)?;
+            out.set_item(named.name(), stresses::section_dict(py, field.clone())?)?;
         }
         Ok(out)
     }
@@ -441,7 +421,8 @@ impl Solution {
     /// `layer_displacement` and `compliance` on dims `(y, x)`; coordinates in the
     /// case's units (the `units` attribute of each is `"1"` for a dimensionless case);
     /// attributes: the case file's text (`case`), its hash, the thirdbody version and
-    /// commit, and every scalar of the summary (NetCDF-ready).
+    /// commit, every scalar of the summary and its `warnings`, if any, as one string
+    /// of a line each (NetCDF-ready).
     fn to_xarray<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let xarray = py.import("xarray").map_err(|_| {
             pyo3::exceptions::PyImportError::new_err(
@@ -477,10 +458,15 @@ impl Solution {
         let summary = self.summary(py)?;
         let summary = summary.downcast::<PyDict>()?;
         for (k, v) in summary.iter() {
-            // NetCDF attributes are numbers and strings: booleans become 0/1, and
-            // nulls and nested values are left out (they stay in `summary`).
+            // NetCDF attributes are numbers and strings: booleans become 0/1, the
+            // warnings one string, and nulls and nested values are left out (they
+            // stay in `summary`).
             if v.is_instance_of::<PyBool>() {
                 attrs.set_item(k, i64::from(v.is_truthy()?))?;
+            } else if k.extract::<String>()? == "warnings" {
+                // A list of sentences: one string, a sentence per line.
+                let lines: Vec<String> = v.extract()?;
+                attrs.set_item(k, lines.join("\n"))?;
             } else if v.is_instance_of::<PyInt>()
                 || v.extract::<f64>().is_ok()
                 || v.extract::<String>().is_ok()
@@ -502,26 +488,6 @@ impl Solution {
         self.arrays.y.bind(py).clone()
     }
 }
-
-/// Runs `work` on a rayon pool made for this call (`threads` threads; by default
-/// as many as rayon's global pool would have, so results equal the CLI's). Never
-/// rayon's global pool: a process forked after that pool started (a
-/// `ProcessPoolExecutor`'s worker on Linux) inherits it without its threads, and its
-/// first parallel loop would wait forever. A pool costs tens of microseconds.
-fn in_own_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> R + Send) -> PyResult<R> {
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = threads {
-        builder = builder.num_threads(n);
-    }
-    let pool = builder
-        .build()
-        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the solver's threads: {e}")))?;
-    Ok(pool.install(work))
-}
-
-/// How often a running solve looks at the caller's signals (Ctrl-C) and hands
-/// progress to the caller's callback.
-const POLL: Duration = Duration::from_millis(50);
 
 /// A progress event as the dict given to `solve`'s `progress` callback.
 fn progress_dict<'py>(
@@ -551,16 +517,16 @@ fn progress_dict<'py>(
     Ok(d)
 }
 
-/// `ValueError` with the CLI's message when a solve of `file` (and its `[stress]`
-/// section) would not fit in the memory available now.
-fn fits_in_memory(file: &CaseFile) -> PyResult<()> {
+/// `NotEnoughMemoryError` (a `ValueError`) with the CLI's message when a solve of
+/// `file` (and its `[stress]` section) would not fit in the memory available now.
+fn fits_in_memory(py: Python<'_>, file: &CaseFile) -> PyResult<()> {
     thirdbody_cli::memory::check(
         &file.case,
         file.stress.as_ref(),
         1,
         thirdbody_cli::memory::available_bytes(),
     )
-    .map_err(PyValueError::new_err)
+    .map_err(|message| not_enough_memory(py, message))
 }
 
 /// A library error as the Python exception: bad input is a `ValueError` with the
@@ -573,98 +539,59 @@ fn to_py_error(e: thirdbody::Error) -> PyErr {
     }
 }
 
-/// Solves `case`. The computation runs without the GIL on a thread of its own while
-/// the calling thread waits: every 50 ms (and at each event) it gives the events to
-/// `progress` (a callable taking one dict: `event` = `"window"` with `window`,
-/// `cells`, `half_width`, or `"iteration"` with `window`, `iteration`, `residual`)
-/// and looks at Ctrl-C, which stops the solve and raises `KeyboardInterrupt`. An
-/// exception from `progress` also stops the solve and is raised. With `stresses`
-/// (the default) the case's `[stress]` section, if any, is computed as `thirdbody
-/// solve` computes it (`summary["stress"]`, `Solution.case_stresses()`).
-#[pyfunction]
-#[pyo3(signature = (case, progress=None, *, stresses=true))]
-fn solve(
+/// Solves `case` with the kernels of `kernels` (building and keeping those it
+/// lacks). The computation runs without the GIL on a thread of its own while the
+/// calling thread waits: every 50 ms (and at each event) it gives the events to
+/// `progress` and looks at Ctrl-C, which stops the solve and raises
+/// `KeyboardInterrupt`. An exception from `progress` also stops the solve and is
+/// raised. The summary's warnings are given to `warnings.warn`.
+fn solve_in(
     py: Python<'_>,
     case: &Case,
     progress: Option<PyObject>,
     stresses: bool,
+    kernels: &Mutex<KernelCache>,
 ) -> PyResult<Solution> {
     let file = &case.file;
-    fits_in_memory(file)?;
-    let stop = AtomicBool::new(false);
-    let (events, received) = mpsc::channel::<Progress>();
-    let mut caller_error: Option<PyErr> = None;
-    let mut window = 0;
-    let (stop, caller_error_slot, progress) = (&stop, &mut caller_error, &progress);
+    fits_in_memory(py, file)?;
     let request = file.stress.as_ref().filter(|_| stresses);
-    let outcome = py.allow_threads(move || {
-        std::thread::scope(|scope| {
-            let worker = scope.spawn(move || {
-                in_own_pool(None, || {
-                    let start = Instant::now();
-                    let mut kernels = thirdbody::KernelCache::new();
-                    let mut observer = |p: Progress| {
-                        let _ = events.send(p);
-                        if stop.load(Ordering::Relaxed) {
-                            ControlFlow::Break(())
-                        } else {
-                            ControlFlow::Continue(())
-                        }
-                    };
-                    let solution = thirdbody::solve_with(
-                        &file.case,
-                        &file.solver,
-                        &mut kernels,
-                        &mut observer,
-                    )?;
-                    let seconds = start.elapsed().as_secs_f64();
-                    let stresses = request.map(|r| solution.stress_results(r)).transpose()?;
-                    Ok((solution, seconds, stresses))
-                })
-            });
-            let mut pending = Vec::new();
-            loop {
-                let finished = match received.recv_timeout(POLL) {
-                    Ok(p) => {
-                        pending.push(p);
-                        pending.extend(received.try_iter());
-                        false
+    let mut window = 0;
+    let outcome = interruptible(
+        py,
+        |stop, events| {
+            in_own_pool(None, || {
+                // Taken on the solve's own thread: waiting for a solve of another
+                // thread to give it back, this thread still answers Ctrl-C.
+                let mut kernels = kernels.lock().unwrap_or_else(|e| e.into_inner());
+                let start = Instant::now();
+                let mut observer = |p: Progress| {
+                    let _ = events.send(p);
+                    if stop.load(Ordering::Relaxed) {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
                     }
-                    Err(RecvTimeoutError::Timeout) => false,
-                    Err(RecvTimeoutError::Disconnected) => true,
                 };
-                if caller_error_slot.is_none() {
-                    let checked = Python::with_gil(|py| -> PyResult<()> {
-                        py.check_signals()?;
-                        for p in pending.drain(..) {
-                            if let Progress::Window { attempt, .. } = p {
-                                window = attempt;
-                            }
-                            if let Some(callback) = progress {
-                                callback.call1(py, (progress_dict(py, &p, window)?,))?;
-                            }
-                        }
-                        Ok(())
-                    });
-                    if let Err(e) = checked {
-                        *caller_error_slot = Some(e);
-                        stop.store(true, Ordering::Relaxed);
-                    }
+                let solution =
+                    thirdbody::solve_with(&file.case, &file.solver, &mut kernels, &mut observer)?;
+                let seconds = start.elapsed().as_secs_f64();
+                let stresses = request.map(|r| solution.stress_results(r)).transpose()?;
+                Ok((solution, seconds, stresses))
+            })
+        },
+        |py, batch: Vec<Progress>| {
+            for p in batch {
+                if let Progress::Window { attempt, .. } = p {
+                    window = attempt;
                 }
-                pending.clear();
-                if finished {
-                    break;
+                if let Some(callback) = &progress {
+                    callback.call1(py, (progress_dict(py, &p, window)?,))?;
                 }
             }
-            worker.join()
-        })
-    });
-    if let Some(e) = caller_error {
-        return Err(e);
-    }
-    let (mut solution, seconds, stress_results) = outcome
-        .map_err(|_| PyRuntimeError::new_err("the solver panicked (a bug, please report it)"))??
-        .map_err(to_py_error)?;
+            Ok(())
+        },
+    )?;
+    let (mut solution, seconds, stress_results) = outcome?.map_err(to_py_error)?;
     let report = thirdbody::Report::new(&file.case, &solution, seconds, stress_results.as_ref());
     let summary_json = serde_json::to_string(&report)
         .map_err(|e| PyRuntimeError::new_err(format!("summary: {e}")))?;
@@ -688,6 +615,7 @@ fn solve(
         x: read_only(py, (0..g.nx).map(|i| g.x(i)).collect(), g.nx)?,
         y: read_only(py, (0..g.ny).map(|j| g.y(j)).collect(), g.ny)?,
     };
+    warn_all(py, &report.warnings)?;
     Ok(Solution {
         solution,
         arrays,
@@ -696,6 +624,142 @@ fn solve(
         units: file.case.units,
         stress_results,
     })
+}
+
+/// Solves `case` with kernels built for this call (a `Solver` keeps them between
+/// calls). The computation runs without the GIL on a thread of its own while the
+/// calling thread waits: every 50 ms (and at each event) it gives the events to
+/// `progress` (a callable taking one dict: `event` = `"window"` with `window`,
+/// `cells`, `half_width`, or `"iteration"` with `window`, `iteration`, `residual`)
+/// and looks at Ctrl-C, which stops the solve and raises `KeyboardInterrupt`. An
+/// exception from `progress` also stops the solve and is raised. With `stresses`
+/// (the default) the case's `[stress]` section, if any, is computed as `thirdbody
+/// solve` computes it (`summary["stress"]`, `Solution.case_stresses()`). Each of the
+/// summary's `warnings` is also given to `warnings.warn` as a `ThirdbodyWarning`.
+#[pyfunction]
+#[pyo3(signature = (case, progress=None, *, stresses=true))]
+fn solve(
+    py: Python<'_>,
+    case: &Case,
+    progress: Option<PyObject>,
+    stresses: bool,
+) -> PyResult<Solution> {
+    solve_in(
+        py,
+        case,
+        progress,
+        stresses,
+        &Mutex::new(KernelCache::new()),
+    )
+}
+
+/// A solver that keeps what is costly to build between solves: the DC-FFT plans and
+/// the surface kernels (a coated body's costs 0.1 to 6 s at 256²), one per body,
+/// grid size and cell size, up to `capacity` of them (and 256 MiB). Solves of cases
+/// that differ in load, velocity or layer reuse them; a case whose automatic window
+/// comes out different (another load may choose another cell size) builds its own.
+/// One solve at a time: a second thread's call waits for the first (give each
+/// thread its own `Solver`).
+#[pyclass(module = "thirdbody", frozen)]
+struct Solver {
+    kernels: Mutex<KernelCache>,
+}
+
+impl Solver {
+    /// Runs `f` on the cache, waited for without the GIL (a solve in another thread
+    /// may hold it, and that solve needs the GIL to finish).
+    fn with_kernels<R: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&mut KernelCache) -> R + Send,
+    ) -> R {
+        py.allow_threads(|| {
+            // A solve that panicked left nothing half-written in the cache: entries
+            // are added whole.
+            let mut kernels = self.kernels.lock().unwrap_or_else(|e| e.into_inner());
+            f(&mut kernels)
+        })
+    }
+}
+
+#[pymethods]
+impl Solver {
+    /// A solver with an empty cache keeping up to `capacity` kernels (0 keeps none).
+    #[new]
+    #[pyo3(signature = (capacity=8))]
+    fn new(capacity: usize) -> Self {
+        Solver {
+            kernels: Mutex::new(KernelCache::with_capacity(capacity)),
+        }
+    }
+
+    /// Solves `case` as `thirdbody.solve` does, with this solver's kernels.
+    #[pyo3(signature = (case, progress=None, *, stresses=true))]
+    fn solve(
+        &self,
+        py: Python<'_>,
+        case: &Case,
+        progress: Option<PyObject>,
+        stresses: bool,
+    ) -> PyResult<Solution> {
+        solve_in(py, case, progress, stresses, &self.kernels)
+    }
+
+    /// Surface kernels built since the solver was made (each one not held when a
+    /// solve asked for it).
+    #[getter]
+    fn kernels_built(&self, py: Python<'_>) -> usize {
+        self.with_kernels(py, |k| k.spectra_built())
+    }
+
+    /// Surface kernels handed out again without building them.
+    #[getter]
+    fn kernels_reused(&self, py: Python<'_>) -> usize {
+        self.with_kernels(py, |k| k.spectra_reused())
+    }
+
+    /// Surface kernels held now.
+    #[getter]
+    fn kernels_held(&self, py: Python<'_>) -> usize {
+        self.with_kernels(py, |k| k.len())
+    }
+
+    /// Drops every kernel and plan held.
+    fn clear(&self, py: Python<'_>) {
+        self.with_kernels(py, |k| k.clear())
+    }
+
+    /// Solves one sweep case as `thirdbody sweep` does (sequential FFTs; a failure is
+    /// a `failed` record), with this solver's kernels, and returns its record as JSON.
+    /// Runs without the GIL.
+    fn _solve_record(
+        &self,
+        py: Python<'_>,
+        text: String,
+        base: PathBuf,
+        id: String,
+        index: usize,
+        labels: Vec<String>,
+    ) -> PyResult<String> {
+        // One thread per case: the executor runs the cases side by side.
+        let record = self.with_kernels(py, |kernels| {
+            in_own_pool(Some(1), || {
+                solve_record(
+                    id,
+                    index,
+                    labels,
+                    || parse_case_file(&text, &mut |file, cell| heightmap::load(&base, file, cell)),
+                    kernels,
+                )
+            })
+        })?;
+        serde_json::to_string(&record).map_err(|e| PyRuntimeError::new_err(format!("record: {e}")))
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let (held, built) = self.with_kernels(py, |k| (k.len(), k.spectra_built()));
+        format!("<thirdbody.Solver holding {held} kernel(s), {built} built>")
+    }
 }
 
 /// The cases of a sweep (the CLI's `thirdbody sweep` product, ids and labels) and
@@ -803,32 +867,6 @@ impl SweepPlan {
     }
 }
 
-/// Solves one sweep case as `thirdbody sweep` does (sequential FFTs; a failure is a
-/// `failed` record) and returns its record as JSON. Runs without the GIL.
-#[pyfunction]
-fn _solve_record(
-    py: Python<'_>,
-    text: String,
-    base: PathBuf,
-    id: String,
-    index: usize,
-    labels: Vec<String>,
-) -> PyResult<String> {
-    // One thread per case: the executor runs the cases side by side.
-    let record = py.allow_threads(|| {
-        in_own_pool(Some(1), || {
-            solve_record(
-                id,
-                index,
-                labels,
-                || parse_case_file(&text, &mut |file, cell| heightmap::load(&base, file, cell)),
-                &mut thirdbody::KernelCache::new(),
-            )
-        })
-    })?;
-    serde_json::to_string(&record).map_err(|e| PyRuntimeError::new_err(format!("record: {e}")))
-}
-
 /// Runs the `thirdbody` command line with `args` (program name first) and returns
 /// its exit code: the package's `thirdbody` script.
 #[pyfunction]
@@ -850,7 +888,7 @@ fn _thirdbody(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(cite, m)?)?;
     m.add_class::<SweepPlan>()?;
-    m.add_function(wrap_pyfunction!(_solve_record, m)?)?;
+    m.add_class::<Solver>()?;
     m.add_function(wrap_pyfunction!(_command_line, m)?)?;
     m.add("__version__", thirdbody::provenance::VERSION)?;
     Ok(())

@@ -290,6 +290,22 @@ def test_ctrl_c_reaches_the_child_when_the_runner_ignores_sigint():
     assert after < 2.0, f"the child went on {after:.1f} s after Ctrl-C"
 
 
+def test_ctrl_c_stops_a_long_stress_section():
+    # 20,000 depths of an XZ section under the Fig. 3 pressure take tens of seconds;
+    # they are computed a few at a time, and Ctrl-C stops them between two.
+    script = f"""
+import numpy as np
+import thirdbody
+solution = thirdbody.solve(thirdbody.Case.from_file({str(ROOT / "examples" / "paper_fig3.toml")!r}))
+print("started", flush=True)
+solution.stresses("xz", depths=np.linspace(0.0, 0.05, 20000))
+print("finished", flush=True)
+"""
+    err, after = _interrupted(script, 1.0)
+    assert "KeyboardInterrupt" in err, err
+    assert after < 1.5, f"the stresses went on {after:.1f} s after Ctrl-C"
+
+
 def test_ctrl_c_stops_a_long_solve():
     # Hertz at 1024 x 1024 takes several seconds; Ctrl-C after 1 s stops it at once.
     script = f"""
