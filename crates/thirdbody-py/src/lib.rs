@@ -6,6 +6,7 @@
 //! physics: every number comes from the `thirdbody` crate.
 
 mod errors;
+mod heights;
 mod interrupt;
 mod stresses;
 
@@ -13,7 +14,7 @@ use std::ffi::OsString;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use numpy::{PyArray1, PyArray2};
@@ -24,6 +25,7 @@ use thirdbody::case_file::{parse_case_file, CaseFile};
 use thirdbody::{KernelCache, Progress};
 
 use errors::{not_enough_memory, warn_all};
+use heights::{Heights, ARRAY_FILE};
 use interrupt::{in_own_pool, interruptible};
 use thirdbody_cli::heightmap;
 use thirdbody_cli::sweep::folder::{Record, SweepFile};
@@ -41,21 +43,43 @@ struct Case {
     text: String,
     /// Folder that relative height-map paths are read from.
     base: PathBuf,
+    /// The slider's heights when given as an array (`slider.file = "<array>"`).
+    heights: Option<Arc<Heights>>,
 }
 
 /// Parses a case file's text as `thirdbody solve` does (height maps relative to
-/// `base`). A `[sweep]` section (read by `thirdbody.sweep`, as by `thirdbody sweep`)
-/// is set aside first: the case is the sweep's base case.
-fn parse(text: &str, base: &Path) -> PyResult<CaseFile> {
+/// `base`, or the array `heights`). A `[sweep]` section (read by `thirdbody.sweep`,
+/// as by `thirdbody sweep`) is set aside first: the case is the sweep's base case.
+fn parse(text: &str, base: &Path, heights: Option<&Heights>) -> PyResult<CaseFile> {
     let without_sweep = text.parse::<toml::Table>().ok().and_then(|mut table| {
         table.remove("sweep")?;
         Some(table.to_string())
     });
     parse_case_file(
         without_sweep.as_deref().unwrap_or(text),
-        &mut |file, cell_size| heightmap::load(base, file, cell_size),
+        &mut |file, cell_size| heights::load(heights, base, file, cell_size),
     )
     .map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// `slider` (a section's dict) without its `heights`, which are returned, and with
+/// `file = "<array>"` in their place.
+fn take_heights<'py>(
+    slider: &Bound<'py, PyDict>,
+) -> PyResult<(Bound<'py, PyDict>, Option<Heights>)> {
+    let Some(value) = slider.get_item("heights")? else {
+        return Ok((slider.clone(), None));
+    };
+    if slider.contains("file")? {
+        return Err(PyValueError::new_err(
+            "slider.heights and slider.file are not allowed together: the heights as an \
+             array or a file of them",
+        ));
+    }
+    let rest = slider.copy()?;
+    rest.del_item("heights")?;
+    rest.set_item("file", ARRAY_FILE)?;
+    Ok((rest, Some(Heights::from_py(&value)?)))
 }
 
 /// A Python value as a TOML value; `key` names it in the error.
@@ -126,8 +150,17 @@ fn absolute_folder(folder: Option<&Path>) -> PathBuf {
 
 impl Case {
     fn from_text(text: String, base: PathBuf) -> PyResult<Self> {
-        let file = parse(&text, &base)?;
-        Ok(Case { file, text, base })
+        Self::with_heights(text, base, None)
+    }
+
+    fn with_heights(text: String, base: PathBuf, heights: Option<Arc<Heights>>) -> PyResult<Self> {
+        let file = parse(&text, &base, heights.as_deref())?;
+        Ok(Case {
+            file,
+            text,
+            base,
+            heights,
+        })
     }
 }
 
@@ -135,7 +168,10 @@ impl Case {
 impl Case {
     /// A case from sections given as keyword arguments or one dict, mirroring the
     /// case file: `Case(slider={"shape": "sphere", "radius": 1.0}, substrate={...},
-    /// loading={...}, grid={"cells": [128, 128]})`. Validated as a case file is.
+    /// loading={...}, grid={"cells": [128, 128]})`. Validated as a case file is. A
+    /// height map may be given as an array instead of a file: `slider={"shape":
+    /// "height_map", "heights": array, "cell_size": h}` (shape `(ny, nx)`, rows along
+    /// y, as an NPY map).
     #[new]
     #[pyo3(signature = (sections=None, **kwargs))]
     fn new(
@@ -151,10 +187,18 @@ impl Case {
         for d in [sections, kwargs].into_iter().flatten() {
             py_sections.update(d.as_mapping())?;
         }
+        let mut heights = None;
+        if let Some(slider) = py_sections.get_item("slider")? {
+            if let Ok(slider) = slider.downcast::<PyDict>() {
+                let (rest, taken) = take_heights(slider)?;
+                py_sections.set_item("slider", rest)?;
+                heights = taken.map(Arc::new);
+            }
+        }
         let toml::Value::Table(table) = to_toml("", py_sections.as_any())? else {
             unreachable!("a dict converts to a table")
         };
-        Self::from_text(table.to_string(), absolute_folder(None))
+        Self::with_heights(table.to_string(), absolute_folder(None), heights)
     }
 
     /// A case from the text of a TOML case file (docs/case-file.md); relative
@@ -177,7 +221,7 @@ impl Case {
     /// A variant with some keys changed: dotted keys as `thirdbody sweep --vary`
     /// takes them (`"loading.velocity"`, `"layer.branch_times[0]"`), as a dict or
     /// keyword arguments with `__` for the dot (`loading__velocity=1e-2`); `None`
-    /// removes a key.
+    /// removes a key. `"slider.heights"` takes an array of heights (see `Case`).
     #[pyo3(signature = (changes=None, **kwargs))]
     fn with_(
         &self,
@@ -188,9 +232,25 @@ impl Case {
             .text
             .parse()
             .map_err(|e| PyValueError::new_err(format!("{e}")))?;
+        let mut heights = self.heights.clone();
         for d in [changes, kwargs].into_iter().flatten() {
             for (k, v) in d.iter() {
                 let key: String = k.extract::<String>()?.replace("__", ".");
+                if key == "slider.heights" {
+                    heights = Some(Arc::new(Heights::from_py(&v)?));
+                    let file = KeyValue::Set(toml::Value::String(ARRAY_FILE.into()));
+                    apply(&mut table, "slider.file", &file).map_err(PyValueError::new_err)?;
+                    continue;
+                }
+                let mut v = v;
+                if key == "slider" {
+                    // A whole slider section, perhaps with its heights.
+                    if let Ok(slider) = v.downcast::<PyDict>() {
+                        let (rest, taken) = take_heights(slider)?;
+                        heights = taken.map(Arc::new).or(heights);
+                        v = rest.into_any();
+                    }
+                }
                 let value = if v.is_none() {
                     KeyValue::Remove
                 } else {
@@ -199,10 +259,11 @@ impl Case {
                 apply(&mut table, &key, &value).map_err(PyValueError::new_err)?;
             }
         }
-        Self::from_text(table.to_string(), self.base.clone())
+        Self::with_heights(table.to_string(), self.base.clone(), heights)
     }
 
-    /// The case file's text this case was parsed from.
+    /// The case file's text this case was parsed from (`slider.file = "<array>"`
+    /// for heights given as an array).
     #[getter]
     fn toml(&self) -> &str {
         &self.text
@@ -221,15 +282,30 @@ impl Case {
         thirdbody::provenance::case_hash(&self.file.case)
     }
 
-    /// Pickling (process pools, Dask): the text and the height-map folder.
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, PathBuf))> {
+    /// Pickling (process pools, Dask): the text, the height-map folder and the
+    /// heights given as an array, if any.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        (String, PathBuf, Option<Bound<'py, PyArray2<f64>>>),
+    )> {
         let this = slf.get();
-        let rebuild = slf
-            .py()
+        let py = slf.py();
+        let rebuild = py
             .import("thirdbody")?
             .getattr("Case")?
-            .getattr("from_toml")?;
-        Ok((rebuild, (this.text.clone(), this.base.clone())))
+            .getattr("_rebuild")?;
+        let heights = this.heights.as_ref().map(|h| h.to_py(py)).transpose()?;
+        Ok((rebuild, (this.text.clone(), this.base.clone(), heights)))
+    }
+
+    /// The case `__reduce__` describes.
+    #[staticmethod]
+    fn _rebuild(text: String, base: PathBuf, heights: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let heights = heights.map(Heights::from_py).transpose()?.map(Arc::new);
+        Self::with_heights(text, base, heights)
     }
 
     fn __repr__(&self) -> String {
@@ -807,6 +883,12 @@ impl SweepPlan {
         for (k, v) in vary.iter() {
             let key: String = k.extract()?;
             arguments.push(vary_argument(&key, &v)?);
+        }
+        if case.heights.is_some() {
+            return Err(PyValueError::new_err(
+                "slider.heights given as an array cannot be swept (the sweep's cases are \
+                 case files): save them with numpy.save and give slider.file",
+            ));
         }
         let sweep = Sweep::new(&case.text, &case.base, &arguments)
             .map_err(|e| PyValueError::new_err(e.to_string()))?;

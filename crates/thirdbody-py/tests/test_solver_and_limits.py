@@ -131,7 +131,8 @@ class _InThisThread(concurrent.futures.Executor):
 
 def test_a_sweep_worker_keeps_one_solver_for_its_cases():
     _sweep._worker.__dict__.clear()
-    table = thirdbody.sweep(_coated(), {"loading.normal_load": [3e-6, 4e-6, 5e-6]},
+    # Without the case's [stress] section: the kernels are the point here.
+    table = thirdbody.sweep(_coated(64).with_(stress=None), {"loading.normal_load": [3e-6, 4e-6, 5e-6]},
                             executor=_InThisThread())
     assert (table["status"] == "ok").all()
     assert _sweep._solver().kernels_built == 1
@@ -181,3 +182,98 @@ def test_a_summary_warning_is_a_python_warning_and_stays_in_the_dataset():
         quiet = thirdbody.solve(case.with_(loading__normal_load=5e-6))
     assert "warnings" not in quiet.summary
     assert "warnings" not in quiet.to_xarray().attrs
+
+
+# --- heights as a numpy array --------------------------------------------------------
+
+def _paraboloid():
+    # A paraboloid of radius 1 on 201 x 201 nodes 2.5e-4 apart, a little tilted so
+    # that a transposed map would differ.
+    s = (np.arange(201) - 100) * 2.5e-4
+    return (s[None, :] ** 2 + s[:, None] ** 2) / 2.0 + 1e-3 * s[None, :]
+
+
+def _solve_summary(case):
+    summary = thirdbody.solve(case).summary
+    summary.pop("solve_seconds")
+    return summary
+
+
+def test_heights_as_an_array_equal_the_same_map_in_an_npy_file(tmp_path):
+    heights = _paraboloid()
+    np.save(tmp_path / "map.npy", heights)
+    text = """[slider]
+shape = "height_map"
+file = "map.npy"
+cell_size = 2.5e-4
+[substrate]
+young = 1.0
+poisson = 0.3
+[loading]
+normal_load = 5e-6
+[grid]
+cells = [48, 48]
+"""
+    from_file = thirdbody.Case.from_toml(text, base_dir=tmp_path)
+    from_array = thirdbody.Case(
+        slider={"shape": "height_map", "heights": heights, "cell_size": 2.5e-4},
+        substrate={"young": 1.0, "poisson": 0.3},
+        loading={"normal_load": 5e-6},
+        grid={"cells": [48, 48]},
+    )
+    assert 'file = "<array>"' in from_array.toml
+    assert from_array.case_hash == from_file.case_hash
+    want = _solve_summary(from_file)
+    assert _solve_summary(from_array) == want, "the same map, the same bits"
+    # Any 2-D array-like of numbers, and with_ keeps the array (or takes another).
+    assert from_array.with_(loading__normal_load=5e-6).case_hash == from_file.case_hash
+    as_lists = from_file.with_({"slider.file": None, "slider.heights": heights.tolist()})
+    assert as_lists.case_hash == from_file.case_hash
+    whole_section = thirdbody.Case.from_file(HERTZ).with_(
+        {"slider": {"shape": "height_map", "heights": heights, "cell_size": 2.5e-4},
+         "grid.cells": [48, 48], "loading.normal_load": 5e-6})
+    assert whole_section.case_hash == from_file.case_hash
+
+
+def test_heights_as_an_array_are_checked_as_a_file_is(tmp_path):
+    heights = _paraboloid()
+    slider = {"shape": "height_map", "cell_size": 2.5e-4}
+    rest = dict(substrate={"young": 1.0, "poisson": 0.3}, loading={"normal_load": 5e-6},
+                grid={"cells": [48, 48]})
+    bad = heights.copy()
+    bad[3, 7] = np.nan
+    np.save(tmp_path / "bad.npy", bad)
+    with pytest.raises(ValueError) as from_file:
+        thirdbody.Case(slider={**slider, "file": str(tmp_path / "bad.npy")}, **rest)
+    with pytest.raises(ValueError) as from_array:
+        thirdbody.Case(slider={**slider, "heights": bad}, **rest)
+    assert str(from_array.value) == str(from_file.value)
+    assert "row 3, column 7" in str(from_array.value)
+    with pytest.raises(ValueError, match=r"slider.heights of shape \(201,\)"):
+        thirdbody.Case(slider={**slider, "heights": heights[0]}, **rest)
+    with pytest.raises(ValueError, match="slider.heights and slider.file"):
+        thirdbody.Case(slider={**slider, "heights": heights, "file": "map.npy"}, **rest)
+    with pytest.raises(ValueError, match="numpy.save"):
+        thirdbody.sweep(thirdbody.Case(slider={**slider, "heights": heights}, **rest),
+                        {"loading.normal_load": [1e-6, 2e-6]})
+
+
+def _penetration(case):
+    return thirdbody.solve(case).summary["penetration"]
+
+
+def test_a_case_with_heights_as_an_array_pickles_and_solves_in_a_process_pool():
+    import pickle
+
+    case = thirdbody.Case(
+        slider={"shape": "height_map", "heights": _paraboloid(), "cell_size": 2.5e-4},
+        substrate={"young": 1.0, "poisson": 0.3},
+        loading={"normal_load": 5e-6},
+        grid={"cells": [32, 32]},
+    )
+    again = pickle.loads(pickle.dumps(case))
+    assert again.case_hash == case.case_hash and again.toml == case.toml
+    variants = [case.with_(loading__normal_load=q) for q in (4e-6, 5e-6)]
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        got = list(pool.map(_penetration, variants))
+    assert got == [_penetration(v) for v in variants]

@@ -15,13 +15,16 @@ __version__: str
 
 class Case:
     """A contact case, exactly as a case file gives it. Immutable: ``with_`` derives
-    variants. Picklable (its text and height-map folder)."""
+    variants. Picklable (its text, height-map folder and heights array, if any)."""
 
     def __new__(cls, sections: Optional[Dict[str, Any]] = None, **kwargs: Any) -> "Case":
         """A case from its sections as one dict and/or keyword arguments, mirroring
         the case file: ``Case(slider={"shape": "sphere", "radius": 1.0}, ...)``.
-        Integers may be numpy's (``np.int64``, ``np.array([128, 128])``). Raises
-        ``ValueError`` as the case-file parser does."""
+        Integers may be numpy's (``np.int64``, ``np.array([128, 128])``). A height
+        map may be an array instead of a file: ``slider={"shape": "height_map",
+        "heights": array, "cell_size": h}`` (shape ``(ny, nx)``, rows along y; the
+        text then reads ``file = "<array>"``). Raises ``ValueError`` as the case-file
+        parser does."""
     @staticmethod
     def from_toml(text: str, base_dir: Optional[_Path] = None) -> "Case":
         """A case from a case file's text; relative height-map paths are read from
@@ -32,7 +35,8 @@ class Case:
         """A case from a TOML case file (height maps read beside it)."""
     def with_(self, changes: Optional[Dict[str, Any]] = None, **kwargs: Any) -> "Case":
         """A variant with dotted keys changed (``{"loading.velocity": 1e-2}``, or
-        ``loading__velocity=1e-2``); ``None`` removes a key."""
+        ``loading__velocity=1e-2``); ``None`` removes a key; ``"slider.heights"``
+        takes an array of heights."""
     @property
     def toml(self) -> str:
         """The case file's text this case was parsed from."""
@@ -42,7 +46,13 @@ class Case:
     @property
     def case_hash(self) -> str:
         """SHA-256 of the canonical case (``case_hash`` of summary.json)."""
-    def __reduce__(self) -> Tuple[Callable[[str, Path], "Case"], Tuple[str, Path]]: ...
+    def __reduce__(
+        self,
+    ) -> Tuple[Callable[..., "Case"], Tuple[str, Path, Optional[_Array]]]: ...
+    @staticmethod
+    def _rebuild(text: str, base: _Path, heights: Optional[Any]) -> "Case":
+        """The case ``__reduce__`` describes: its text, height-map folder and heights
+        given as an array, if any."""
 
 class Solution:
     """A solved contact; made by :func:`solve`. Arrays are read-only, shape ``(ny, nx)``."""
