@@ -620,7 +620,8 @@ fn to_py_error(e: thirdbody::Error) -> PyErr {
 /// calling thread waits: every 50 ms (and at each event) it gives the events to
 /// `progress` and looks at Ctrl-C, which stops the solve and raises
 /// `KeyboardInterrupt`. An exception from `progress` also stops the solve and is
-/// raised. The summary's warnings are given to `warnings.warn`.
+/// raised; the case's `[stress]` section, computed a few depths at a time, stops as
+/// well. The summary's warnings are given to `warnings.warn`.
 fn solve_in(
     py: Python<'_>,
     case: &Case,
@@ -651,7 +652,11 @@ fn solve_in(
                 let solution =
                     thirdbody::solve_with(&file.case, &file.solver, &mut kernels, &mut observer)?;
                 let seconds = start.elapsed().as_secs_f64();
-                let stresses = request.map(|r| solution.stress_results(r)).transpose()?;
+                // Stopped (Ctrl-C) in the stresses: no stresses, and the caller's
+                // KeyboardInterrupt is raised instead of this result.
+                let stresses = request
+                    .and_then(|r| stresses::request_in_parts(&solution, r, stop))
+                    .transpose()?;
                 Ok((solution, seconds, stresses))
             })
         },

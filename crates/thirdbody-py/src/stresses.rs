@@ -10,7 +10,10 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use thirdbody::stress::{Section, Side, StressField, STORED_FIELD_NAMES};
+use thirdbody::stress::request::summarise;
+use thirdbody::stress::{
+    Section, Side, StressField, StressRequest, StressResults, STORED_FIELD_NAMES,
+};
 
 use crate::errors::not_enough_memory;
 use crate::interrupt::{in_own_pool, interruptible};
@@ -183,6 +186,29 @@ fn in_parts(
         }
     }
     field.map(Ok)
+}
+
+/// The stresses and summary `request` asks for under `solution`: the sections and
+/// summary of [`StressRequest::compute`], each section computed in parts looking at
+/// `stop` between them (`None` once it is set).
+pub fn request_in_parts(
+    solution: &thirdbody::Solution,
+    request: &StressRequest,
+    stop: &AtomicBool,
+) -> Option<thirdbody::Result<StressResults>> {
+    let named = match request.sections(&solution.body, &solution.grid, &solution.pressure) {
+        Ok(named) => named,
+        Err(e) => return Some(Err(e)),
+    };
+    let mut sections = Vec::with_capacity(named.len());
+    for n in named {
+        match in_parts(solution, &n.section, stop)? {
+            Ok(field) => sections.push((n, field)),
+            Err(e) => return Some(Err(e)),
+        }
+    }
+    let summary = summarise(&sections);
+    Some(Ok(StressResults { sections, summary }))
 }
 
 /// Computes `section` without the GIL; Ctrl-C stops it between parts and raises

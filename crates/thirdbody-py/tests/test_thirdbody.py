@@ -308,6 +308,22 @@ print("finished", flush=True)
     assert after < 1.5, f"the stresses went on {after:.1f} s after Ctrl-C"
 
 
+def test_ctrl_c_stops_a_solves_stress_section():
+    # The Fig. 3 solve takes a fraction of a second, its XZ section of 4096 depths
+    # (the most a [stress] section may ask) several seconds more.
+    script = f"""
+import thirdbody
+case = thirdbody.Case.from_file({str(ROOT / "examples" / "paper_fig3.toml")!r}).with_(
+    {{"stress.sections": ["xz"], "stress.depth_points": 4096}})
+print("started", flush=True)
+thirdbody.solve(case)
+print("finished", flush=True)
+"""
+    err, after = _interrupted(script, 1.5)
+    assert "KeyboardInterrupt" in err, err
+    assert after < 1.5, f"the stresses went on {after:.1f} s after Ctrl-C"
+
+
 def test_ctrl_c_stops_a_long_solve():
     # Hertz at 1024 x 1024 takes several seconds; Ctrl-C after 1 s stops it at once.
     script = f"""

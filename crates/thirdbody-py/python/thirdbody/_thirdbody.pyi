@@ -114,8 +114,9 @@ def solve(
 ) -> Solution:
     """Solves ``case`` without the GIL. ``progress`` gets dicts with ``event`` =
     ``"window"`` (``window``, ``cells``, ``half_width``) or ``"iteration"``
-    (``window``, ``iteration``, ``residual``). Ctrl-C raises ``KeyboardInterrupt``.
-    With ``stresses``, the case's ``[stress]`` section is computed too. The
+    (``window``, ``iteration``, ``residual``). Ctrl-C (in the solve or its
+    stresses) raises ``KeyboardInterrupt``. With ``stresses``, the case's
+    ``[stress]`` section is computed too. The
     summary's ``warnings`` are also given to ``warnings.warn`` as
     :class:`thirdbody.ThirdbodyWarning`. Kernels are built for this call: see
     :class:`Solver`. ``NotEnoughMemoryError`` when the case cannot fit."""
