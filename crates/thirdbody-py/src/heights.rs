@@ -9,7 +9,7 @@ use numpy::{PyArray2, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use thirdbody::HeightMap;
-use thirdbody_cli::heightmap;
+use thirdbody_engine::heightmap;
 
 /// What `slider.file` says when the heights are an array.
 pub const ARRAY_FILE: &str = "<array>";

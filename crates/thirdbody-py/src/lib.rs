@@ -1,6 +1,6 @@
-//! Python bindings of thirdbody (issue 12, first part): a [`Case`] parsed by the
-//! library's own case-file parser (so the validation and its messages are the CLI's),
-//! [`solve`] with the GIL released, and a [`Solution`] whose summary is the library's
+//! Python bindings of thirdbody: a [`Case`] parsed by the library's own case-file
+//! parser (so the validation and its messages are the CLI's), [`solve`] and a
+//! [`Solver`] with the GIL released, and a [`Solution`] whose summary is the library's
 //! [`thirdbody::Report`] (the keys of `summary.json`) and whose fields are numpy
 //! arrays laid out as the CLI's NPY files (rows along y). The front end does no
 //! physics: every number comes from the `thirdbody` crate.
@@ -27,13 +27,13 @@ use thirdbody::{KernelCache, Progress};
 use errors::{not_enough_memory, warn_all};
 use heights::{Heights, ARRAY_FILE};
 use interrupt::{in_own_pool, interruptible};
-use thirdbody_cli::heightmap;
-use thirdbody_cli::sweep::folder::{Record, SweepFile};
-use thirdbody_cli::sweep::results::results_csv;
-use thirdbody_cli::sweep::run::solve_record;
-use thirdbody_cli::sweep::spec::apply;
-use thirdbody_cli::sweep::values::KeyValue;
-use thirdbody_cli::sweep::Sweep;
+use thirdbody_engine::heightmap;
+use thirdbody_engine::sweep::folder::{Record, SweepFile};
+use thirdbody_engine::sweep::record::solve_record;
+use thirdbody_engine::sweep::results::results_csv;
+use thirdbody_engine::sweep::spec::apply;
+use thirdbody_engine::sweep::values::KeyValue;
+use thirdbody_engine::sweep::Sweep;
 
 /// A contact case: slider, body, layer, loading, grid and solver settings, exactly as
 /// a case file gives them. Immutable: `with_` derives variants.
@@ -466,7 +466,7 @@ impl Solution {
             name,
             &section,
             [g.nx, g.ny],
-            thirdbody_cli::memory::available_bytes(),
+            thirdbody_engine::memory::available_bytes(),
         )?;
         let field = stresses::compute(py, &self.solution, &section)?.map_err(to_py_error)?;
         stresses::section_dict(py, field)
@@ -596,11 +596,11 @@ fn progress_dict<'py>(
 /// `NotEnoughMemoryError` (a `ValueError`) with the CLI's message when a solve of
 /// `file` (and its `[stress]` section) would not fit in the memory available now.
 fn fits_in_memory(py: Python<'_>, file: &CaseFile) -> PyResult<()> {
-    thirdbody_cli::memory::check(
+    thirdbody_engine::memory::check(
         &file.case,
         file.stress.as_ref(),
         1,
-        thirdbody_cli::memory::available_bytes(),
+        thirdbody_engine::memory::available_bytes(),
     )
     .map_err(|message| not_enough_memory(py, message))
 }
@@ -899,7 +899,7 @@ impl SweepPlan {
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         // Each case checked alone: the executor's workers may be other machines.
         sweep
-            .check_memory(|_| true, 1, thirdbody_cli::memory::available_bytes())
+            .check_memory(|_| true, 1, thirdbody_engine::memory::available_bytes())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let file = SweepFile::of(&sweep);
         Ok(SweepPlan {
