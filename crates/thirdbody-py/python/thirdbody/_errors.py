@@ -8,5 +8,6 @@ class NotEnoughMemoryError(MemoryError, ValueError):
 
 
 class ThirdbodyWarning(UserWarning):
-    """A result that lies outside the model (the ``warnings`` of a summary: a contact
-    reaching far from the initial contact point, a large approach, mu > 1)."""
+    """A result that lies outside the model or the grid's reach (the ``warnings`` of
+    a summary: a contact reaching far from the initial contact point, a large
+    approach, mu > 1, an energy balance the cells do not resolve)."""
