@@ -1,9 +1,8 @@
 """A Solver that keeps its kernels, stresses refused before they cannot fit and
-computed in parts, numpy integers in cases, and the summary's warnings as Python
-warnings."""
+computed in parts, numpy integers in cases, the summary's warnings as Python
+warnings, and height maps given as numpy arrays."""
 
 import concurrent.futures
-import math
 import pathlib
 import time
 import warnings
