@@ -51,7 +51,8 @@ def dask_speedup(repeats):
     medians = {}
     for workers in (1, 2):
         with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                      dashboard_address=None) as cluster:
+                                      dashboard_address="127.0.0.1:0",
+                                      scheduler_kwargs={"dashboard": False}) as cluster:
             with distributed.Client(cluster) as client:
                 # pure=False: time the solves, not the results Dask keeps for equal tasks.
                 executor = client.get_executor(pure=False)
