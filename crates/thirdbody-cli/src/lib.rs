@@ -1,7 +1,9 @@
 //! Library side of the `thirdbody` command-line front end: the pieces the binary, its
-//! integration tests and benches share (atomic writes, plots, the VTK writer,
-//! height-map files, the summary of a solve, parameter sweeps, the labels of each
-//! system of units). Numerics live in the `thirdbody` crate; this crate turns case
+//! integration tests and benches share (plots, the VTK writer, running parameter
+//! sweeps into folders, the labels of each system of units). Numerics live in the
+//! `thirdbody` crate; what both front ends need (atomic writes, height-map files, the
+//! memory check, the summary of a solve, sweeps' cases and records) in
+//! `thirdbody-engine`, re-exported here under the same paths; this crate turns case
 //! files into cases and results into files.
 
 #![warn(missing_docs)]
@@ -18,11 +20,10 @@ macro_rules! say {
 }
 
 pub mod app;
-pub mod atomic;
-pub mod heightmap;
-pub mod memory;
 pub mod plot;
-pub mod summary;
 pub mod sweep;
 pub mod units;
 pub mod vtk;
+
+// Shared with the Python package (crates/thirdbody-engine).
+pub use thirdbody_engine::{atomic, heightmap, memory, summary};

@@ -9,6 +9,10 @@
 2. Dask: the Fig. 8 study (32 cases at 128 x 128) through ``thirdbody.sweep`` on a
    ``distributed.LocalCluster`` with one worker and with two (one thread each): the
    medians and the speed-up of two over one.
+3. Kept kernels: 20 solves of the thin-coating case (Fig. 12a) at 256 x 256 on a
+   fixed window, each with another load, through one ``thirdbody.Solver`` and through
+   ``thirdbody.solve`` (a kernel built per call): the medians of the 20 solves' wall
+   time and the ratio.
 
 Run it with nothing else on the machine; it prints the load average with the numbers.
 """
@@ -47,7 +51,8 @@ def dask_speedup(repeats):
     medians = {}
     for workers in (1, 2):
         with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                      dashboard_address=None) as cluster:
+                                      dashboard_address="127.0.0.1:0",
+                                      scheduler_kwargs={"dashboard": False}) as cluster:
             with distributed.Client(cluster) as client:
                 # pure=False: time the solves, not the results Dask keeps for equal tasks.
                 executor = client.get_executor(pure=False)
@@ -66,14 +71,51 @@ def dask_speedup(repeats):
     return ratio
 
 
+def kept_kernels(repeats):
+    case = thirdbody.Case.from_file(ROOT / "examples" / "paper_fig12a_thin_coating.toml").with_(
+        {"grid.cells": [256, 256], "grid.half_width": [0.07, 0.07], "grid.centre": [0.02, 0.0]})
+    loads = [3e-6 + 2e-7 * k for k in range(20)]
+    variants = [case.with_(loading__normal_load=q) for q in loads]
+
+    def fresh():
+        for v in variants:
+            thirdbody.solve(v, stresses=False)
+
+    def kept():
+        solver = thirdbody.Solver()
+        for v in variants:
+            solver.solve(v, stresses=False)
+        assert solver.kernels_built == 1
+
+    medians = {}
+    for name, run in (("thirdbody.solve", fresh), ("one Solver", kept)):
+        times = []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            run()
+            times.append(time.perf_counter() - start)
+        medians[name] = statistics.median(times)
+        print(f"20 loads, thin coating, 256 x 256, {name}: median {medians[name]:.2f} s "
+              f"over {repeats} runs")
+    ratio = medians["thirdbody.solve"] / medians["one Solver"]
+    print(f"one Solver is {ratio:.2f}x faster")
+    return ratio
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=21)
+    parser.add_argument("--only", choices=["overhead", "dask", "kernels"],
+                        help="run one benchmark only")
     args = parser.parse_args()
     print(f"thirdbody {thirdbody.__version__}, {os.cpu_count()} cores, "
           f"load average {os.getloadavg()[0]:.2f} at the start")
-    overhead(args.repeats)
-    dask_speedup(max(3, args.repeats // 4))
+    if args.only in (None, "overhead"):
+        overhead(args.repeats)
+    if args.only in (None, "dask"):
+        dask_speedup(max(3, args.repeats // 4))
+    if args.only in (None, "kernels"):
+        kept_kernels(max(3, args.repeats // 4))
     print(f"load average {os.getloadavg()[0]:.2f} at the end")
 
 

@@ -1,31 +1,39 @@
-//! Python bindings of thirdbody (issue 12, first part): a [`Case`] parsed by the
-//! library's own case-file parser (so the validation and its messages are the CLI's),
-//! [`solve`] with the GIL released, and a [`Solution`] whose summary is the library's
+//! Python bindings of thirdbody: a [`Case`] parsed by the library's own case-file
+//! parser (so the validation and its messages are the CLI's), [`solve`] and a
+//! [`Solver`] with the GIL released, and a [`Solution`] whose summary is the library's
 //! [`thirdbody::Report`] (the keys of `summary.json`) and whose fields are numpy
 //! arrays laid out as the CLI's NPY files (rows along y). The front end does no
 //! physics: every number comes from the `thirdbody` crate.
 
+mod errors;
+mod heights;
+mod interrupt;
+mod stresses;
+
 use std::ffi::OsString;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::{Duration, Instant};
+use std::sync::atomic::Ordering;
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
 
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyInt};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt};
 use thirdbody::case_file::{parse_case_file, CaseFile};
-use thirdbody::stress::{Section, Side, STORED_FIELD_NAMES};
-use thirdbody::Progress;
-use thirdbody_cli::heightmap;
-use thirdbody_cli::sweep::folder::{Record, SweepFile};
-use thirdbody_cli::sweep::results::results_csv;
-use thirdbody_cli::sweep::run::solve_record;
-use thirdbody_cli::sweep::spec::apply;
-use thirdbody_cli::sweep::values::KeyValue;
-use thirdbody_cli::sweep::Sweep;
+use thirdbody::{KernelCache, Progress};
+
+use errors::{not_enough_memory, warn_all};
+use heights::{Heights, ARRAY_FILE};
+use interrupt::{in_own_pool, interruptible};
+use thirdbody_engine::heightmap;
+use thirdbody_engine::sweep::folder::{Record, SweepFile};
+use thirdbody_engine::sweep::record::solve_record;
+use thirdbody_engine::sweep::results::results_csv;
+use thirdbody_engine::sweep::spec::apply;
+use thirdbody_engine::sweep::values::KeyValue;
+use thirdbody_engine::sweep::Sweep;
 
 /// A contact case: slider, body, layer, loading, grid and solver settings, exactly as
 /// a case file gives them. Immutable: `with_` derives variants.
@@ -35,21 +43,43 @@ struct Case {
     text: String,
     /// Folder that relative height-map paths are read from.
     base: PathBuf,
+    /// The slider's heights when given as an array (`slider.file = "<array>"`).
+    heights: Option<Arc<Heights>>,
 }
 
 /// Parses a case file's text as `thirdbody solve` does (height maps relative to
-/// `base`). A `[sweep]` section (read by `thirdbody.sweep`, as by `thirdbody sweep`)
-/// is set aside first: the case is the sweep's base case.
-fn parse(text: &str, base: &Path) -> PyResult<CaseFile> {
+/// `base`, or the array `heights`). A `[sweep]` section (read by `thirdbody.sweep`,
+/// as by `thirdbody sweep`) is set aside first: the case is the sweep's base case.
+fn parse(text: &str, base: &Path, heights: Option<&Heights>) -> PyResult<CaseFile> {
     let without_sweep = text.parse::<toml::Table>().ok().and_then(|mut table| {
         table.remove("sweep")?;
         Some(table.to_string())
     });
     parse_case_file(
         without_sweep.as_deref().unwrap_or(text),
-        &mut |file, cell_size| heightmap::load(base, file, cell_size),
+        &mut |file, cell_size| heights::load(heights, base, file, cell_size),
     )
     .map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// `slider` (a section's dict) without its `heights`, which are returned, and with
+/// `file = "<array>"` in their place.
+fn take_heights<'py>(
+    slider: &Bound<'py, PyDict>,
+) -> PyResult<(Bound<'py, PyDict>, Option<Heights>)> {
+    let Some(value) = slider.get_item("heights")? else {
+        return Ok((slider.clone(), None));
+    };
+    if slider.contains("file")? {
+        return Err(PyValueError::new_err(
+            "slider.heights and slider.file are not allowed together: the heights as an \
+             array or a file of them",
+        ));
+    }
+    let rest = slider.copy()?;
+    rest.del_item("heights")?;
+    rest.set_item("file", ARRAY_FILE)?;
+    Ok((rest, Some(Heights::from_py(&value)?)))
 }
 
 /// A Python value as a TOML value; `key` names it in the error.
@@ -57,7 +87,12 @@ fn to_toml(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     if let Ok(b) = value.downcast::<PyBool>() {
         return Ok(toml::Value::Boolean(b.is_true()));
     }
-    if value.is_instance_of::<PyInt>() {
+    if is_numpy_bool(value) {
+        return Ok(toml::Value::Boolean(value.is_truthy()?));
+    }
+    // Any integer: Python's, numpy's (`np.int64`, a 0-d integer array), anything with
+    // `__index__`; never a float, which has none.
+    if value.is_instance_of::<PyInt>() || !value.is_instance_of::<PyFloat>() {
         if let Ok(i) = value.extract::<i64>() {
             return Ok(toml::Value::Integer(i));
         }
@@ -96,6 +131,14 @@ fn to_toml(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     )))
 }
 
+/// Whether `value` is a numpy boolean (`np.True_`, which is no Python `bool`).
+fn is_numpy_bool(value: &Bound<'_, PyAny>) -> bool {
+    let kind = value.get_type();
+    let module = kind.module().map(|m| m.to_string()).unwrap_or_default();
+    let name = kind.name().map(|n| n.to_string()).unwrap_or_default();
+    module == "numpy" && (name == "bool_" || name == "bool")
+}
+
 /// `folder` (the working directory when `None` or empty) as an absolute path, so that
 /// a case pickled to a worker started elsewhere (a Dask or Slurm worker) still finds
 /// its height maps.
@@ -107,8 +150,17 @@ fn absolute_folder(folder: Option<&Path>) -> PathBuf {
 
 impl Case {
     fn from_text(text: String, base: PathBuf) -> PyResult<Self> {
-        let file = parse(&text, &base)?;
-        Ok(Case { file, text, base })
+        Self::with_heights(text, base, None)
+    }
+
+    fn with_heights(text: String, base: PathBuf, heights: Option<Arc<Heights>>) -> PyResult<Self> {
+        let file = parse(&text, &base, heights.as_deref())?;
+        Ok(Case {
+            file,
+            text,
+            base,
+            heights,
+        })
     }
 }
 
@@ -116,7 +168,10 @@ impl Case {
 impl Case {
     /// A case from sections given as keyword arguments or one dict, mirroring the
     /// case file: `Case(slider={"shape": "sphere", "radius": 1.0}, substrate={...},
-    /// loading={...}, grid={"cells": [128, 128]})`. Validated as a case file is.
+    /// loading={...}, grid={"cells": [128, 128]})`. Validated as a case file is. A
+    /// height map may be given as an array instead of a file: `slider={"shape":
+    /// "height_map", "heights": array, "cell_size": h}` (shape `(ny, nx)`, rows along
+    /// y, as an NPY map).
     #[new]
     #[pyo3(signature = (sections=None, **kwargs))]
     fn new(
@@ -132,10 +187,18 @@ impl Case {
         for d in [sections, kwargs].into_iter().flatten() {
             py_sections.update(d.as_mapping())?;
         }
+        let mut heights = None;
+        if let Some(slider) = py_sections.get_item("slider")? {
+            if let Ok(slider) = slider.downcast::<PyDict>() {
+                let (rest, taken) = take_heights(slider)?;
+                py_sections.set_item("slider", rest)?;
+                heights = taken.map(Arc::new);
+            }
+        }
         let toml::Value::Table(table) = to_toml("", py_sections.as_any())? else {
             unreachable!("a dict converts to a table")
         };
-        Self::from_text(table.to_string(), absolute_folder(None))
+        Self::with_heights(table.to_string(), absolute_folder(None), heights)
     }
 
     /// A case from the text of a TOML case file (docs/case-file.md); relative
@@ -158,7 +221,7 @@ impl Case {
     /// A variant with some keys changed: dotted keys as `thirdbody sweep --vary`
     /// takes them (`"loading.velocity"`, `"layer.branch_times[0]"`), as a dict or
     /// keyword arguments with `__` for the dot (`loading__velocity=1e-2`); `None`
-    /// removes a key.
+    /// removes a key. `"slider.heights"` takes an array of heights (see `Case`).
     #[pyo3(signature = (changes=None, **kwargs))]
     fn with_(
         &self,
@@ -169,9 +232,25 @@ impl Case {
             .text
             .parse()
             .map_err(|e| PyValueError::new_err(format!("{e}")))?;
+        let mut heights = self.heights.clone();
         for d in [changes, kwargs].into_iter().flatten() {
             for (k, v) in d.iter() {
                 let key: String = k.extract::<String>()?.replace("__", ".");
+                if key == "slider.heights" {
+                    heights = Some(Arc::new(Heights::from_py(&v)?));
+                    let file = KeyValue::Set(toml::Value::String(ARRAY_FILE.into()));
+                    apply(&mut table, "slider.file", &file).map_err(PyValueError::new_err)?;
+                    continue;
+                }
+                let mut v = v;
+                if key == "slider" {
+                    // A whole slider section, perhaps with its heights.
+                    if let Ok(slider) = v.downcast::<PyDict>() {
+                        let (rest, taken) = take_heights(slider)?;
+                        heights = taken.map(Arc::new).or(heights);
+                        v = rest.into_any();
+                    }
+                }
                 let value = if v.is_none() {
                     KeyValue::Remove
                 } else {
@@ -180,10 +259,11 @@ impl Case {
                 apply(&mut table, &key, &value).map_err(PyValueError::new_err)?;
             }
         }
-        Self::from_text(table.to_string(), self.base.clone())
+        Self::with_heights(table.to_string(), self.base.clone(), heights)
     }
 
-    /// The case file's text this case was parsed from.
+    /// The case file's text this case was parsed from (`slider.file = "<array>"`
+    /// for heights given as an array).
     #[getter]
     fn toml(&self) -> &str {
         &self.text
@@ -202,15 +282,30 @@ impl Case {
         thirdbody::provenance::case_hash(&self.file.case)
     }
 
-    /// Pickling (process pools, Dask): the text and the height-map folder.
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, PathBuf))> {
+    /// Pickling (process pools, Dask): the text, the height-map folder and the
+    /// heights given as an array, if any.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        (String, PathBuf, Option<Bound<'py, PyArray2<f64>>>),
+    )> {
         let this = slf.get();
-        let rebuild = slf
-            .py()
+        let py = slf.py();
+        let rebuild = py
             .import("thirdbody")?
             .getattr("Case")?
-            .getattr("from_toml")?;
-        Ok((rebuild, (this.text.clone(), this.base.clone())))
+            .getattr("_rebuild")?;
+        let heights = this.heights.as_ref().map(|h| h.to_py(py)).transpose()?;
+        Ok((rebuild, (this.text.clone(), this.base.clone(), heights)))
+    }
+
+    /// The case `__reduce__` describes.
+    #[staticmethod]
+    fn _rebuild(text: String, base: PathBuf, heights: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let heights = heights.map(Heights::from_py).transpose()?.map(Arc::new);
+        Self::with_heights(text, base, heights)
     }
 
     fn __repr__(&self) -> String {
@@ -276,25 +371,6 @@ const DATASET_FIELDS: [(&str, &str, &str); 5] = [
     ("layer_displacement", "m", "third-body layer's displacement"),
     ("compliance", "m/Pa", "third-body layer's compliance C[p]"),
 ];
-
-/// A section's coordinates and fields as a dict (see `Solution.stresses`).
-fn section_dict<'py>(
-    py: Python<'py>,
-    field: &thirdbody::stress::StressField,
-) -> PyResult<Bound<'py, PyDict>> {
-    let out = PyDict::new(py);
-    out.set_item("x", PyArray1::from_slice(py, &field.xs))?;
-    out.set_item("y", PyArray1::from_slice(py, &field.ys))?;
-    out.set_item("z", PyArray1::from_slice(py, &field.zs))?;
-    let shape = [field.zs.len(), field.ys.len(), field.xs.len()];
-    for (name, values) in STORED_FIELD_NAMES.iter().zip(field.stored_fields()) {
-        let array = PyArray1::from_vec(py, values)
-            .reshape(shape)
-            .expect("a section's field has one value per point");
-        out.set_item(*name, array)?;
-    }
-    Ok(out)
-}
 
 impl Solution {
     /// The field `name` of [`DATASET_FIELDS`] (None when the case has no layer).
@@ -367,7 +443,10 @@ impl Solution {
     /// `(len(z), len(y), len(x))`, tension positive. `section` is `"xz"` (the plane
     /// `y`, at `depths`), `"surface"`, `"plane"` (depth `z`), `"block"` (every cell
     /// centre at `depths`) or `"interface"` (a coated body's interface, `side` =
-    /// `"coating"` or `"substrate"`). Runs without the GIL.
+    /// `"coating"` or `"substrate"`); `depths` a list or 1-D array. Refused with
+    /// `NotEnoughMemoryError` before it starts when the results (11 fields of 8 bytes
+    /// per point) would not fit in the memory available. Runs without the GIL, a few
+    /// depths at a time: Ctrl-C stops it and raises `KeyboardInterrupt`.
     #[pyo3(signature = (section, *, y=0.0, z=0.0, depths=None, side="coating"))]
     fn stresses<'py>(
         &self,
@@ -375,45 +454,22 @@ impl Solution {
         section: &str,
         y: f64,
         z: f64,
-        depths: Option<Vec<f64>>,
+        depths: Option<&Bound<'py, PyAny>>,
         side: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let need_depths = |what: &str| {
-            depths.clone().ok_or_else(|| {
-                PyValueError::new_err(format!("section {what} needs depths (a list of z >= 0)"))
-            })
-        };
-        let section = match section {
-            "xz" => Section::XzPlane {
-                y,
-                depths: need_depths("xz")?,
-            },
-            "surface" => Section::Plane { z: 0.0 },
-            "plane" => Section::Plane { z },
-            "block" => Section::Block {
-                depths: need_depths("block")?,
-            },
-            "interface" => Section::Interface {
-                side: match side {
-                    "coating" => Side::Coating,
-                    "substrate" => Side::Substrate,
-                    other => {
-                        return Err(PyValueError::new_err(format!(
-                            "side = {other:?} is not allowed: \"coating\" or \"substrate\""
-                        )))
-                    }
-                },
-            },
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "section = {other:?} is not allowed: \"xz\", \"surface\", \"plane\", \"block\" or \"interface\""
-                )))
-            }
-        };
-        let field = py
-            .allow_threads(|| in_own_pool(None, || self.solution.stresses(&section)))?
-            .map_err(to_py_error)?;
-        section_dict(py, &field)
+        let name = section;
+        let depths = depths.map(stresses::depths_from).transpose()?;
+        let section = stresses::section(name, y, z, depths, side)?;
+        let g = self.solution.grid;
+        stresses::check_memory(
+            py,
+            name,
+            &section,
+            [g.nx, g.ny],
+            thirdbody_engine::memory::available_bytes(),
+        )?;
+        let field = stresses::compute(py, &self.solution, &section)?.map_err(to_py_error)?;
+        stresses::section_dict(py, field)
     }
 
     /// The stresses of the case's `[stress]` section, computed with the solve as
@@ -431,7 +487,7 @@ impl Solution {
         })?;
         let out = PyDict::new(py);
         for (named, field) in &results.sections {
-            out.set_item(named.name(), section_dict(py, field)?)?;
+            out.set_item(named.name(), stresses::section_dict(py, field.clone())?)?;
         }
         Ok(out)
     }
@@ -441,7 +497,8 @@ impl Solution {
     /// `layer_displacement` and `compliance` on dims `(y, x)`; coordinates in the
     /// case's units (the `units` attribute of each is `"1"` for a dimensionless case);
     /// attributes: the case file's text (`case`), its hash, the thirdbody version and
-    /// commit, and every scalar of the summary (NetCDF-ready).
+    /// commit, every scalar of the summary and its `warnings`, if any, as one string
+    /// of a line each (NetCDF-ready).
     fn to_xarray<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let xarray = py.import("xarray").map_err(|_| {
             pyo3::exceptions::PyImportError::new_err(
@@ -477,10 +534,15 @@ impl Solution {
         let summary = self.summary(py)?;
         let summary = summary.downcast::<PyDict>()?;
         for (k, v) in summary.iter() {
-            // NetCDF attributes are numbers and strings: booleans become 0/1, and
-            // nulls and nested values are left out (they stay in `summary`).
+            // NetCDF attributes are numbers and strings: booleans become 0/1, the
+            // warnings one string, and nulls and nested values are left out (they
+            // stay in `summary`).
             if v.is_instance_of::<PyBool>() {
                 attrs.set_item(k, i64::from(v.is_truthy()?))?;
+            } else if k.extract::<String>()? == "warnings" {
+                // A list of sentences: one string, a sentence per line.
+                let lines: Vec<String> = v.extract()?;
+                attrs.set_item(k, lines.join("\n"))?;
             } else if v.is_instance_of::<PyInt>()
                 || v.extract::<f64>().is_ok()
                 || v.extract::<String>().is_ok()
@@ -502,26 +564,6 @@ impl Solution {
         self.arrays.y.bind(py).clone()
     }
 }
-
-/// Runs `work` on a rayon pool made for this call (`threads` threads; by default
-/// as many as rayon's global pool would have, so results equal the CLI's). Never
-/// rayon's global pool: a process forked after that pool started (a
-/// `ProcessPoolExecutor`'s worker on Linux) inherits it without its threads, and its
-/// first parallel loop would wait forever. A pool costs tens of microseconds.
-fn in_own_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> R + Send) -> PyResult<R> {
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = threads {
-        builder = builder.num_threads(n);
-    }
-    let pool = builder
-        .build()
-        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the solver's threads: {e}")))?;
-    Ok(pool.install(work))
-}
-
-/// How often a running solve looks at the caller's signals (Ctrl-C) and hands
-/// progress to the caller's callback.
-const POLL: Duration = Duration::from_millis(50);
 
 /// A progress event as the dict given to `solve`'s `progress` callback.
 fn progress_dict<'py>(
@@ -551,16 +593,16 @@ fn progress_dict<'py>(
     Ok(d)
 }
 
-/// `ValueError` with the CLI's message when a solve of `file` (and its `[stress]`
-/// section) would not fit in the memory available now.
-fn fits_in_memory(file: &CaseFile) -> PyResult<()> {
-    thirdbody_cli::memory::check(
+/// `NotEnoughMemoryError` (a `ValueError`) with the CLI's message when a solve of
+/// `file` (and its `[stress]` section) would not fit in the memory available now.
+fn fits_in_memory(py: Python<'_>, file: &CaseFile) -> PyResult<()> {
+    thirdbody_engine::memory::check(
         &file.case,
         file.stress.as_ref(),
         1,
-        thirdbody_cli::memory::available_bytes(),
+        thirdbody_engine::memory::available_bytes(),
     )
-    .map_err(PyValueError::new_err)
+    .map_err(|message| not_enough_memory(py, message))
 }
 
 /// A library error as the Python exception: bad input is a `ValueError` with the
@@ -573,98 +615,64 @@ fn to_py_error(e: thirdbody::Error) -> PyErr {
     }
 }
 
-/// Solves `case`. The computation runs without the GIL on a thread of its own while
-/// the calling thread waits: every 50 ms (and at each event) it gives the events to
-/// `progress` (a callable taking one dict: `event` = `"window"` with `window`,
-/// `cells`, `half_width`, or `"iteration"` with `window`, `iteration`, `residual`)
-/// and looks at Ctrl-C, which stops the solve and raises `KeyboardInterrupt`. An
-/// exception from `progress` also stops the solve and is raised. With `stresses`
-/// (the default) the case's `[stress]` section, if any, is computed as `thirdbody
-/// solve` computes it (`summary["stress"]`, `Solution.case_stresses()`).
-#[pyfunction]
-#[pyo3(signature = (case, progress=None, *, stresses=true))]
-fn solve(
+/// Solves `case` with the kernels of `kernels` (building and keeping those it
+/// lacks). The computation runs without the GIL on a thread of its own while the
+/// calling thread waits: every 50 ms (and at each event) it gives the events to
+/// `progress` and looks at Ctrl-C, which stops the solve and raises
+/// `KeyboardInterrupt`. An exception from `progress` also stops the solve and is
+/// raised; the case's `[stress]` section, computed a few depths at a time, stops as
+/// well. The summary's warnings are given to `warnings.warn`.
+fn solve_in(
     py: Python<'_>,
     case: &Case,
     progress: Option<PyObject>,
     stresses: bool,
+    kernels: &Mutex<KernelCache>,
 ) -> PyResult<Solution> {
     let file = &case.file;
-    fits_in_memory(file)?;
-    let stop = AtomicBool::new(false);
-    let (events, received) = mpsc::channel::<Progress>();
-    let mut caller_error: Option<PyErr> = None;
-    let mut window = 0;
-    let (stop, caller_error_slot, progress) = (&stop, &mut caller_error, &progress);
+    fits_in_memory(py, file)?;
     let request = file.stress.as_ref().filter(|_| stresses);
-    let outcome = py.allow_threads(move || {
-        std::thread::scope(|scope| {
-            let worker = scope.spawn(move || {
-                in_own_pool(None, || {
-                    let start = Instant::now();
-                    let mut kernels = thirdbody::KernelCache::new();
-                    let mut observer = |p: Progress| {
-                        let _ = events.send(p);
-                        if stop.load(Ordering::Relaxed) {
-                            ControlFlow::Break(())
-                        } else {
-                            ControlFlow::Continue(())
-                        }
-                    };
-                    let solution = thirdbody::solve_with(
-                        &file.case,
-                        &file.solver,
-                        &mut kernels,
-                        &mut observer,
-                    )?;
-                    let seconds = start.elapsed().as_secs_f64();
-                    let stresses = request.map(|r| solution.stress_results(r)).transpose()?;
-                    Ok((solution, seconds, stresses))
-                })
-            });
-            let mut pending = Vec::new();
-            loop {
-                let finished = match received.recv_timeout(POLL) {
-                    Ok(p) => {
-                        pending.push(p);
-                        pending.extend(received.try_iter());
-                        false
+    let mut window = 0;
+    let outcome = interruptible(
+        py,
+        |stop, events| {
+            in_own_pool(None, || {
+                // Taken on the solve's own thread: waiting for a solve of another
+                // thread to give it back, this thread still answers Ctrl-C.
+                let mut kernels = kernels.lock().unwrap_or_else(|e| e.into_inner());
+                let start = Instant::now();
+                let mut observer = |p: Progress| {
+                    let _ = events.send(p);
+                    if stop.load(Ordering::Relaxed) {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
                     }
-                    Err(RecvTimeoutError::Timeout) => false,
-                    Err(RecvTimeoutError::Disconnected) => true,
                 };
-                if caller_error_slot.is_none() {
-                    let checked = Python::with_gil(|py| -> PyResult<()> {
-                        py.check_signals()?;
-                        for p in pending.drain(..) {
-                            if let Progress::Window { attempt, .. } = p {
-                                window = attempt;
-                            }
-                            if let Some(callback) = progress {
-                                callback.call1(py, (progress_dict(py, &p, window)?,))?;
-                            }
-                        }
-                        Ok(())
-                    });
-                    if let Err(e) = checked {
-                        *caller_error_slot = Some(e);
-                        stop.store(true, Ordering::Relaxed);
-                    }
+                let solution =
+                    thirdbody::solve_with(&file.case, &file.solver, &mut kernels, &mut observer)?;
+                let seconds = start.elapsed().as_secs_f64();
+                // Stopped (Ctrl-C) in the stresses: no stresses, and the caller's
+                // KeyboardInterrupt is raised instead of this result.
+                let stresses = request
+                    .and_then(|r| stresses::request_in_parts(&solution, r, stop))
+                    .transpose()?;
+                Ok((solution, seconds, stresses))
+            })
+        },
+        |py, batch: Vec<Progress>| {
+            for p in batch {
+                if let Progress::Window { attempt, .. } = p {
+                    window = attempt;
                 }
-                pending.clear();
-                if finished {
-                    break;
+                if let Some(callback) = &progress {
+                    callback.call1(py, (progress_dict(py, &p, window)?,))?;
                 }
             }
-            worker.join()
-        })
-    });
-    if let Some(e) = caller_error {
-        return Err(e);
-    }
-    let (mut solution, seconds, stress_results) = outcome
-        .map_err(|_| PyRuntimeError::new_err("the solver panicked (a bug, please report it)"))??
-        .map_err(to_py_error)?;
+            Ok(())
+        },
+    )?;
+    let (mut solution, seconds, stress_results) = outcome?.map_err(to_py_error)?;
     let report = thirdbody::Report::new(&file.case, &solution, seconds, stress_results.as_ref());
     let summary_json = serde_json::to_string(&report)
         .map_err(|e| PyRuntimeError::new_err(format!("summary: {e}")))?;
@@ -688,6 +696,7 @@ fn solve(
         x: read_only(py, (0..g.nx).map(|i| g.x(i)).collect(), g.nx)?,
         y: read_only(py, (0..g.ny).map(|j| g.y(j)).collect(), g.ny)?,
     };
+    warn_all(py, &report.warnings)?;
     Ok(Solution {
         solution,
         arrays,
@@ -696,6 +705,142 @@ fn solve(
         units: file.case.units,
         stress_results,
     })
+}
+
+/// Solves `case` with kernels built for this call (a `Solver` keeps them between
+/// calls). The computation runs without the GIL on a thread of its own while the
+/// calling thread waits: every 50 ms (and at each event) it gives the events to
+/// `progress` (a callable taking one dict: `event` = `"window"` with `window`,
+/// `cells`, `half_width`, or `"iteration"` with `window`, `iteration`, `residual`)
+/// and looks at Ctrl-C, which stops the solve and raises `KeyboardInterrupt`. An
+/// exception from `progress` also stops the solve and is raised. With `stresses`
+/// (the default) the case's `[stress]` section, if any, is computed as `thirdbody
+/// solve` computes it (`summary["stress"]`, `Solution.case_stresses()`). Each of the
+/// summary's `warnings` is also given to `warnings.warn` as a `ThirdbodyWarning`.
+#[pyfunction]
+#[pyo3(signature = (case, progress=None, *, stresses=true))]
+fn solve(
+    py: Python<'_>,
+    case: &Case,
+    progress: Option<PyObject>,
+    stresses: bool,
+) -> PyResult<Solution> {
+    solve_in(
+        py,
+        case,
+        progress,
+        stresses,
+        &Mutex::new(KernelCache::new()),
+    )
+}
+
+/// A solver that keeps what is costly to build between solves: the DC-FFT plans and
+/// the surface kernels (a coated body's costs 0.1 to 6 s at 256²), one per body,
+/// grid size and cell size, up to `capacity` of them (and 256 MiB). Solves of cases
+/// that differ in load, velocity or layer reuse them; a case whose automatic window
+/// comes out different (another load may choose another cell size) builds its own.
+/// One solve at a time: a second thread's call waits for the first (give each
+/// thread its own `Solver`).
+#[pyclass(module = "thirdbody", frozen)]
+struct Solver {
+    kernels: Mutex<KernelCache>,
+}
+
+impl Solver {
+    /// Runs `f` on the cache, waited for without the GIL (a solve in another thread
+    /// may hold it, and that solve needs the GIL to finish).
+    fn with_kernels<R: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&mut KernelCache) -> R + Send,
+    ) -> R {
+        py.allow_threads(|| {
+            // A solve that panicked left nothing half-written in the cache: entries
+            // are added whole.
+            let mut kernels = self.kernels.lock().unwrap_or_else(|e| e.into_inner());
+            f(&mut kernels)
+        })
+    }
+}
+
+#[pymethods]
+impl Solver {
+    /// A solver with an empty cache keeping up to `capacity` kernels (0 keeps none).
+    #[new]
+    #[pyo3(signature = (capacity=8))]
+    fn new(capacity: usize) -> Self {
+        Solver {
+            kernels: Mutex::new(KernelCache::with_capacity(capacity)),
+        }
+    }
+
+    /// Solves `case` as `thirdbody.solve` does, with this solver's kernels.
+    #[pyo3(signature = (case, progress=None, *, stresses=true))]
+    fn solve(
+        &self,
+        py: Python<'_>,
+        case: &Case,
+        progress: Option<PyObject>,
+        stresses: bool,
+    ) -> PyResult<Solution> {
+        solve_in(py, case, progress, stresses, &self.kernels)
+    }
+
+    /// Surface kernels built since the solver was made (each one not held when a
+    /// solve asked for it).
+    #[getter]
+    fn kernels_built(&self, py: Python<'_>) -> usize {
+        self.with_kernels(py, |k| k.spectra_built())
+    }
+
+    /// Surface kernels handed out again without building them.
+    #[getter]
+    fn kernels_reused(&self, py: Python<'_>) -> usize {
+        self.with_kernels(py, |k| k.spectra_reused())
+    }
+
+    /// Surface kernels held now.
+    #[getter]
+    fn kernels_held(&self, py: Python<'_>) -> usize {
+        self.with_kernels(py, |k| k.len())
+    }
+
+    /// Drops every kernel and plan held.
+    fn clear(&self, py: Python<'_>) {
+        self.with_kernels(py, |k| k.clear())
+    }
+
+    /// Solves one sweep case as `thirdbody sweep` does (sequential FFTs; a failure is
+    /// a `failed` record), with this solver's kernels, and returns its record as JSON.
+    /// Runs without the GIL.
+    fn _solve_record(
+        &self,
+        py: Python<'_>,
+        text: String,
+        base: PathBuf,
+        id: String,
+        index: usize,
+        labels: Vec<String>,
+    ) -> PyResult<String> {
+        // One thread per case: the executor runs the cases side by side.
+        let record = self.with_kernels(py, |kernels| {
+            in_own_pool(Some(1), || {
+                solve_record(
+                    id,
+                    index,
+                    labels,
+                    || parse_case_file(&text, &mut |file, cell| heightmap::load(&base, file, cell)),
+                    kernels,
+                )
+            })
+        })?;
+        serde_json::to_string(&record).map_err(|e| PyRuntimeError::new_err(format!("record: {e}")))
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let (held, built) = self.with_kernels(py, |k| (k.len(), k.spectra_built()));
+        format!("<thirdbody.Solver holding {held} kernel(s), {built} built>")
+    }
 }
 
 /// The cases of a sweep (the CLI's `thirdbody sweep` product, ids and labels) and
@@ -744,11 +889,17 @@ impl SweepPlan {
             let key: String = k.extract()?;
             arguments.push(vary_argument(&key, &v)?);
         }
+        if case.heights.is_some() {
+            return Err(PyValueError::new_err(
+                "slider.heights given as an array cannot be swept (the sweep's cases are \
+                 case files): save them with numpy.save and give slider.file",
+            ));
+        }
         let sweep = Sweep::new(&case.text, &case.base, &arguments)
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         // Each case checked alone: the executor's workers may be other machines.
         sweep
-            .check_memory(|_| true, 1, thirdbody_cli::memory::available_bytes())
+            .check_memory(|_| true, 1, thirdbody_engine::memory::available_bytes())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let file = SweepFile::of(&sweep);
         Ok(SweepPlan {
@@ -803,32 +954,6 @@ impl SweepPlan {
     }
 }
 
-/// Solves one sweep case as `thirdbody sweep` does (sequential FFTs; a failure is a
-/// `failed` record) and returns its record as JSON. Runs without the GIL.
-#[pyfunction]
-fn _solve_record(
-    py: Python<'_>,
-    text: String,
-    base: PathBuf,
-    id: String,
-    index: usize,
-    labels: Vec<String>,
-) -> PyResult<String> {
-    // One thread per case: the executor runs the cases side by side.
-    let record = py.allow_threads(|| {
-        in_own_pool(Some(1), || {
-            solve_record(
-                id,
-                index,
-                labels,
-                || parse_case_file(&text, &mut |file, cell| heightmap::load(&base, file, cell)),
-                &mut thirdbody::KernelCache::new(),
-            )
-        })
-    })?;
-    serde_json::to_string(&record).map_err(|e| PyRuntimeError::new_err(format!("record: {e}")))
-}
-
 /// Runs the `thirdbody` command line with `args` (program name first) and returns
 /// its exit code: the package's `thirdbody` script.
 #[pyfunction]
@@ -850,7 +975,7 @@ fn _thirdbody(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(cite, m)?)?;
     m.add_class::<SweepPlan>()?;
-    m.add_function(wrap_pyfunction!(_solve_record, m)?)?;
+    m.add_class::<Solver>()?;
     m.add_function(wrap_pyfunction!(_command_line, m)?)?;
     m.add("__version__", thirdbody::provenance::VERSION)?;
     Ok(())

@@ -43,6 +43,10 @@ pub struct KernelCache {
     byte_budget: usize,
     plans: Vec<(PlanKey, Arc<ConvolutionPlan>)>,
     spectra: Vec<(SpectrumKey, Arc<KernelSpectrum>)>,
+    /// Surface kernels built because none was held.
+    spectra_built: usize,
+    /// Surface kernels found held.
+    spectra_reused: usize,
 }
 
 impl Default for KernelCache {
@@ -65,6 +69,8 @@ impl KernelCache {
             byte_budget: DEFAULT_BYTE_BUDGET,
             plans: Vec::new(),
             spectra: Vec::new(),
+            spectra_built: 0,
+            spectra_reused: 0,
         }
     }
 
@@ -78,7 +84,18 @@ impl KernelCache {
         self.spectra.is_empty()
     }
 
-    /// Drops every plan and spectrum.
+    /// Surface kernels this cache has built (none was held for the body, grid size and
+    /// cell size asked for) since it was made: what a caller reusing it saves.
+    pub fn spectra_built(&self) -> usize {
+        self.spectra_built
+    }
+
+    /// Surface kernels this cache has handed out without building them.
+    pub fn spectra_reused(&self) -> usize {
+        self.spectra_reused
+    }
+
+    /// Drops every plan and spectrum (the counts of built and reused kernels stay).
     pub fn clear(&mut self) {
         self.plans.clear();
         self.spectra.clear();
@@ -116,9 +133,11 @@ impl KernelCache {
             let entry = self.spectra.remove(k);
             let spectrum = Arc::clone(&entry.1);
             self.spectra.push(entry);
+            self.spectra_reused += 1;
             return Ok(spectrum);
         }
         let spectrum = Arc::new(surface_kernel(body, grid, plan)?);
+        self.spectra_built += 1;
         if spectrum.bytes() <= self.byte_budget {
             keep(
                 &mut self.spectra,
@@ -179,6 +198,8 @@ mod tests {
         // A bad body is an error, and nothing is kept for it.
         assert!(cache.surface_spectrum(&coated(-1.0), &grid, &plan).is_err());
         assert_eq!(cache.len(), 2);
+        // Two built, one handed out again; the failed one is not counted.
+        assert_eq!((cache.spectra_built(), cache.spectra_reused()), (2, 1));
     }
 
     #[test]

@@ -11,51 +11,14 @@
 //! the caller passes. [`command`] is the `thirdbody sweep` / `thirdbody merge` front
 //! end (arguments, progress bar, printed summary).
 
-pub mod cases;
 pub mod command;
-pub mod folder;
 pub mod merge;
 pub mod plot;
-pub mod results;
 pub mod run;
-pub mod spec;
-pub mod values;
 
-pub use cases::Sweep;
+// The cases, records and results.csv, shared with the Python package.
+pub use thirdbody_engine::sweep::{cases, folder, record, results, spec, values};
+pub use thirdbody_engine::sweep::{Sweep, SweepError};
+
 pub use merge::{merge, MergeReport};
 pub use run::{run, Event, RunOptions, RunReport, Shard};
-
-/// A sweep the user asked for that cannot be run as given: a bad `--vary` or
-/// `[sweep]` entry, a case of the product that the case-file rules refuse, or an
-/// output folder that holds another sweep. The command exits with code 2 and writes
-/// nothing.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum SweepError {
-    /// A bad sweep specification; the message names the key or section.
-    #[error("{0}")]
-    Spec(String),
-    /// A case of the product is not a valid case.
-    #[error("sweep case {index} ({settings}): {message}")]
-    Case {
-        /// Index of the case in the product.
-        index: usize,
-        /// Its varied values, `key = value, ...`.
-        settings: String,
-        /// The case-file error.
-        message: String,
-    },
-    /// The output folder (or a folder to merge) cannot be used.
-    #[error("{0}")]
-    Folder(String),
-}
-
-impl SweepError {
-    pub(crate) fn spec(message: impl Into<String>) -> Self {
-        SweepError::Spec(message.into())
-    }
-
-    pub(crate) fn key(place: &str, message: impl std::fmt::Display) -> Self {
-        SweepError::Spec(format!("{place}: {message}"))
-    }
-}

@@ -10,26 +10,23 @@
 //! Kernels and FFT plans are not shared between cases: set-up is 2-7 % of a 128 x 128
 //! solve and cases rarely share a window (docs/performance.md, "Sweeps").
 
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-use std::time::Instant;
 
 use anyhow::{Context, Result};
 use rayon::prelude::*;
-use thirdbody::{KernelCache, Parallelism};
+use thirdbody::KernelCache;
 
 use super::folder::{read_record, write_record, Folder, Record, Status, SweepFile};
 use super::plot::write_mu_plot;
 use super::results::{collect, write_results};
 use super::{Sweep, SweepError};
-use crate::summary::summary_json;
+use thirdbody_engine::sweep::record::solve_record;
 
 /// Kernel spectra a sweep worker keeps (cases that share a window and body reuse
 /// them; a coated kernel costs up to seconds).
 const WORKER_CACHE_CAPACITY: usize = 4;
-use serde_json::Value;
 
 /// Which part of the cases a run does: case `index` belongs to shard `k` (1-based) of
 /// `n` when `index % n == k - 1`.
@@ -219,75 +216,6 @@ fn solve_case(sweep: &Sweep, index: usize, kernels: &mut KernelCache) -> Record 
         || sweep.parse_case(index),
         kernels,
     )
-}
-
-/// The record of one sweep case: `parse` gives its case file (so that a worker
-/// elsewhere, e.g. a Python executor's, can rebuild it from its text), solved with
-/// sequential FFTs as one of many; every failure, a panic included, becomes a
-/// `failed` record with the message.
-pub fn solve_record(
-    case: String,
-    index: usize,
-    settings: Vec<String>,
-    parse: impl FnOnce() -> thirdbody::Result<thirdbody::case_file::CaseFile>,
-    kernels: &mut KernelCache,
-) -> Record {
-    let start = Instant::now();
-    let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<serde_json::Value> {
-        let file = parse()?;
-        let mut params = file.solver;
-        params.parallelism = Parallelism::Sequential;
-        let solve_start = Instant::now();
-        let solution = thirdbody::solve_with(&file.case, &params, kernels, &mut |_| {
-            std::ops::ControlFlow::Continue(())
-        })?;
-        let mut summary = summary_json(
-            &file.case,
-            &solution,
-            solve_start.elapsed().as_secs_f64(),
-            None,
-        )?;
-        // A [stress] section in the base case: its scalar results become columns
-        // `stress_<key>` (the sections themselves are not kept per case).
-        if let Some(request) = &file.stress {
-            let stress = solution.stress_results(request)?;
-            if let (Value::Object(map), Value::Object(scalars)) =
-                (&mut summary, serde_json::to_value(&stress.summary)?)
-            {
-                for (key, value) in scalars {
-                    map.insert(format!("stress_{key}"), value);
-                }
-            }
-        }
-        Ok(summary)
-    }));
-    let (status, summary, error) = match outcome {
-        Ok(Ok(summary)) => (Status::Ok, Some(summary), None),
-        Ok(Err(e)) => (Status::Failed, None, Some(format!("{e:#}"))),
-        Err(panic) => {
-            let what = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_default();
-            (
-                Status::Failed,
-                None,
-                Some(format!(
-                    "the solver panicked (a bug, please report it): {what}"
-                )),
-            )
-        }
-    };
-    Record {
-        case,
-        index,
-        settings,
-        status,
-        error,
-        summary,
-        solve_seconds: start.elapsed().as_secs_f64(),
-    }
 }
 
 #[cfg(test)]

@@ -8,15 +8,29 @@ from __future__ import annotations
 import concurrent.futures as cf
 import io
 import os
+import threading
 from typing import Any, Callable, Mapping, Optional
 
 from . import _thirdbody
 
+#: Each worker thread's (or process's) own Solver: the cases a worker solves share its
+#: kernels (a sweep over loads or velocities on a fixed window builds one), and no
+#: two threads share one.
+_worker = threading.local()
+
+
+def _solver() -> "_thirdbody.Solver":
+    """The calling thread's Solver, made at its first case."""
+    solver = getattr(_worker, "solver", None)
+    if solver is None:
+        solver = _worker.solver = _thirdbody.Solver()
+    return solver
+
 
 def _solve_job(job):
-    """Solves one case of a sweep: module-level so that process pools and Dask
-    workers can unpickle it by name."""
-    return _thirdbody._solve_record(*job)
+    """Solves one case of a sweep with the worker's Solver: module-level so that
+    process pools and Dask workers can unpickle it by name."""
+    return _solver()._solve_record(*job)
 
 
 def sweep(
@@ -39,7 +53,9 @@ def sweep(
     by default a thread pool with one thread per core (solves release the GIL). A
     case that fails is a row with ``status`` ``"failed"`` and its ``error``.
     ``progress(done, total)`` is called after each case. Ctrl-C cancels the cases
-    not yet started and raises ``KeyboardInterrupt``.
+    not yet started and raises ``KeyboardInterrupt``. Each worker thread keeps one
+    :class:`Solver` for the cases it solves (their kernels, up to 256 MiB, live as
+    long as the thread).
     """
     try:
         import pandas

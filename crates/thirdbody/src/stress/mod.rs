@@ -106,6 +106,10 @@ impl StressField {
     }
 }
 
+/// Bytes a section's results take per point: the eleven stored fields
+/// ([`STORED_FIELD_NAMES`]) of 8 bytes.
+pub const STORED_BYTES_PER_POINT: f64 = (STORED_FIELD_NAMES.len() * 8) as f64;
+
 impl Section {
     /// The depth planes the section is computed on (one for a plane or interface).
     pub fn depth_count(&self) -> usize {
@@ -113,6 +117,59 @@ impl Section {
             Section::XzPlane { depths, .. } | Section::Block { depths } => depths.len(),
             Section::Plane { .. } | Section::Interface { .. } => 1,
         }
+    }
+
+    /// Checks the section's y and depths (and that an interface section is on a body
+    /// with an interface); errors name the `[stress]` key. [`stresses`] checks this
+    /// first; a front end that computes a section in parts checks it whole.
+    pub fn validate(&self, body: &Body) -> Result<()> {
+        match self {
+            Section::XzPlane { y, depths } => {
+                if !y.is_finite() {
+                    return Err(Error::invalid("stress.y", y, "a finite y"));
+                }
+                check_depths(depths)
+            }
+            Section::Plane { z } => check_depth("stress.z", *z),
+            Section::Block { depths } => check_depths(depths),
+            Section::Interface { .. } => {
+                if body.model().interface_depths().is_empty() {
+                    return Err(Error::invalid(
+                        "stress.sections",
+                        "interface",
+                        "an interface section only for a coated body",
+                    ));
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The points of the section on a grid of `cells` (nx, ny): `nx` per depth for an
+    /// XZ plane, `nx ny` per depth otherwise.
+    pub fn point_count(&self, cells: [usize; 2]) -> f64 {
+        let [nx, ny] = cells.map(|n| n as f64);
+        let per_depth = match self {
+            Section::XzPlane { .. } => nx,
+            _ => nx * ny,
+        };
+        per_depth * self.depth_count() as f64
+    }
+
+    /// An estimate of the memory the section's results take on a grid of `cells`
+    /// (nx, ny), in bytes: [`STORED_BYTES_PER_POINT`] per point (a 32² block of 10⁶
+    /// depths is 90 GB), as [`StressRequest::estimated_bytes`] counts them. A front
+    /// end compares it with the memory available before asking for the section.
+    ///
+    /// ```
+    /// use thirdbody::stress::Section;
+    /// let block = Section::Block { depths: vec![0.0; 1_000_000] };
+    /// assert_eq!(block.estimated_bytes([32, 32]), 1e6 * 1024.0 * 88.0);
+    /// let xz = Section::XzPlane { y: 0.0, depths: vec![0.0; 10] };
+    /// assert_eq!(xz.estimated_bytes([32, 32]), 10.0 * 32.0 * 88.0);
+    /// ```
+    pub fn estimated_bytes(&self, cells: [usize; 2]) -> f64 {
+        self.point_count(cells) * STORED_BYTES_PER_POINT
     }
 }
 
@@ -252,25 +309,7 @@ pub fn stresses_observed(
             "a finite pressure",
         ));
     }
-    match section {
-        Section::XzPlane { y, depths } => {
-            if !y.is_finite() {
-                return Err(Error::invalid("stress.y", y, "a finite y"));
-            }
-            check_depths(depths)?;
-        }
-        Section::Plane { z } => check_depth("stress.z", *z)?,
-        Section::Block { depths } => check_depths(depths)?,
-        Section::Interface { .. } => {
-            if body.model().interface_depths().is_empty() {
-                return Err(Error::invalid(
-                    "stress.sections",
-                    "interface",
-                    "an interface section only for a coated body",
-                ));
-            }
-        }
-    }
+    section.validate(body)?;
     // In the solver's units (crate::units): the kernels' powers of lengths stay in
     // double precision's range whatever the case's units. Powers of two: exact both
     // ways.

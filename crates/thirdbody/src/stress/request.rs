@@ -274,7 +274,7 @@ impl StressRequest {
             })
             .sum::<f64>()
             + self.planes.len() as f64 * nx * ny;
-        points * 11.0 * 8.0
+        points * super::STORED_BYTES_PER_POINT
     }
 
     /// The section kinds asked for (the defaults filled in for `body`).
