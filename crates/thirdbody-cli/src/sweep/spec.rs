@@ -513,6 +513,9 @@ cells = [64, 64]
             // Not a key of the case.
             assert!(get(&spec.base, "sweep.plot_scale").is_none());
         }
+        // The paper's Fig. 8 keeps a linear mu axis.
+        let fig8 = include_str!("../../../../examples/sweeps/paper_fig8.toml");
+        assert_eq!(read_spec(fig8, &[]).unwrap().plot_scale, PlotScale::Linear);
         for (bad, shown) in [("\"logarithmic\"", "\"logarithmic\""), ("1", "1")] {
             let e = with(&format!("plot_scale = {bad}"))
                 .unwrap_err()
