@@ -97,22 +97,16 @@ pub fn carries_warning(summary: &Value) -> bool {
         .is_some_and(|w| !w.is_empty())
 }
 
-/// Draws the plot into `dir`; `None` when there is no numeric axis or no solved case.
-pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result<Option<PathBuf>> {
-    let Some(x_axis) = file
-        .axes
-        .iter()
-        .position(|a| a.levels.len() >= 2 && a.levels.iter().all(|l| l.number().is_some()))
-    else {
-        return Ok(None);
-    };
+/// The curves of mu against axis `x_axis` (one per combination of the other axes'
+/// values, points in increasing x) and, per curve and point, whether its case carries
+/// warnings.
+fn mu_curves(
+    file: &SweepFile,
+    records: &[Record],
+    x_axis: usize,
+    units: Units,
+) -> (Vec<Series>, Vec<Vec<bool>>) {
     let axis = &file.axes[x_axis];
-    // SI labels if any solved case is in SI units.
-    let si = records.iter().any(|r| {
-        matches!(&r.summary, Some(Value::Object(m))
-            if m.get("units").and_then(Value::as_str).and_then(from_name) == Some(Units::Si))
-    });
-    let units = if si { Units::Si } else { Units::Dimensionless };
     // Per series: the levels of the other axes, the curve, and per point a warning.
     let mut series: Vec<(Vec<usize>, Series, Vec<bool>)> = Vec::new();
     for r in records {
@@ -172,11 +166,8 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
         series[k].1.y.push(mu);
         series[k].2.push(warned);
     }
-    if series.is_empty() {
-        return Ok(None);
-    }
     let mut hollow = Vec::with_capacity(series.len());
-    let series: Vec<Series> = series
+    let curves = series
         .into_iter()
         .map(|(_, mut s, warned)| {
             let mut points: Vec<(f64, f64, bool)> = (0..s.x.len())
@@ -189,6 +180,29 @@ pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result
             s
         })
         .collect();
+    (curves, hollow)
+}
+
+/// Draws the plot into `dir`; `None` when there is no numeric axis or no solved case.
+pub fn write_mu_plot(dir: &Path, file: &SweepFile, records: &[Record]) -> Result<Option<PathBuf>> {
+    let Some(x_axis) = file
+        .axes
+        .iter()
+        .position(|a| a.levels.len() >= 2 && a.levels.iter().all(|l| l.number().is_some()))
+    else {
+        return Ok(None);
+    };
+    let axis = &file.axes[x_axis];
+    // SI labels if any solved case is in SI units.
+    let si = records.iter().any(|r| {
+        matches!(&r.summary, Some(Value::Object(m))
+            if m.get("units").and_then(Value::as_str).and_then(from_name) == Some(Units::Si))
+    });
+    let units = if si { Units::Si } else { Units::Dimensionless };
+    let (series, hollow) = mu_curves(file, records, x_axis, units);
+    if series.is_empty() {
+        return Ok(None);
+    }
     let xs: Vec<f64> = series.iter().flat_map(|s| s.x.iter().copied()).collect();
     let (lo, hi) = xs
         .iter()
@@ -255,6 +269,87 @@ mod tests {
         assert!(carries_warning(&json!({"warnings": ["mu > 1"]})));
         assert!(!carries_warning(&json!({"warnings": []})));
         assert!(!carries_warning(&json!({"friction_coefficient": 0.1})));
+    }
+
+    #[test]
+    fn points_of_warned_cases_are_hollow_and_stay_with_their_points() {
+        use super::super::folder::{AxisEntry, CaseEntry, LevelEntry};
+        use serde_json::json;
+        let level = |key: &str, label: &str, v: Value| LevelEntry {
+            label: label.into(),
+            set: vec![(key.into(), v)],
+        };
+        // Axes: variant (a, b), then velocity (1e-3, 1e-2, 1e-1); the first numeric axis
+        // is the velocity.
+        let file = SweepFile {
+            format: "f".into(),
+            base_case: String::new(),
+            axes: vec![
+                AxisEntry {
+                    name: "variant".into(),
+                    log_spaced: false,
+                    levels: vec![
+                        LevelEntry {
+                            label: "a".into(),
+                            set: vec![],
+                        },
+                        LevelEntry {
+                            label: "b".into(),
+                            set: vec![],
+                        },
+                    ],
+                },
+                AxisEntry {
+                    name: "loading.velocity".into(),
+                    log_spaced: true,
+                    levels: ["0.001", "0.01", "0.1"]
+                        .iter()
+                        .map(|l| level("loading.velocity", l, json!(l.parse::<f64>().unwrap())))
+                        .collect(),
+                },
+            ],
+            cases: (0..6)
+                .map(|k| CaseEntry {
+                    case: format!("{k:04}"),
+                    levels: vec![k / 3, k % 3],
+                })
+                .collect(),
+            plot_scale: PlotScale::Auto,
+        };
+        let record = |k: usize, mu: f64, warnings: &[&str]| Record {
+            case: format!("{k:04}"),
+            index: k,
+            settings: vec![],
+            status: Status::Ok,
+            error: None,
+            summary: Some(if warnings.is_empty() {
+                json!({"friction_coefficient": mu})
+            } else {
+                json!({"friction_coefficient": mu, "warnings": warnings})
+            }),
+            solve_seconds: 0.0,
+        };
+        // Out of order, so that the points must be sorted with their flags.
+        let records = [
+            record(2, 1e-5, &[]),
+            record(0, 3e-2, &["the contact reaches 0.11 R"]),
+            record(1, 1e-2, &[]),
+            record(5, 2e-3, &[]),
+            record(3, 4e-5, &["the energy balance is off by 84 %"]),
+            record(4, 1e-3, &[]),
+        ];
+        let (curves, hollow) = mu_curves(&file, &records, 1, Units::Dimensionless);
+        assert_eq!(curves.len(), 2);
+        assert_eq!(curves[0].label, "a");
+        assert_eq!(curves[0].x, [1e-3, 1e-2, 1e-1]);
+        assert_eq!(curves[0].y, [3e-2, 1e-2, 1e-5]);
+        assert_eq!(hollow[0], [true, false, false]);
+        assert_eq!(curves[1].y, [4e-5, 1e-3, 2e-3]);
+        assert_eq!(hollow[1], [true, false, false]);
+        // The plot itself: drawn (log mu: 1e-5 to 3e-2).
+        let dir = tempfile::tempdir().unwrap();
+        let path = write_mu_plot(dir.path(), &file, &records).unwrap().unwrap();
+        assert!(path.ends_with("mu_vs_loading.velocity.png"));
     }
 
     #[test]
