@@ -96,7 +96,8 @@ fn padded_log(lo: f64, hi: f64) -> (f64, f64) {
 
 /// Ticks of a logarithmic axis over `[lo, hi]`: its decades, with 2 and 5 times each
 /// decade when there are fewer than three, and every integer times a decade when that
-/// still gives fewer than three.
+/// still gives fewer than three; a range too narrow for two of those gets a linear
+/// axis's ticks.
 pub(crate) fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
     let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
     let within = |mantissas: &[f64]| -> Vec<f64> {
@@ -115,7 +116,12 @@ pub(crate) fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
             return keys;
         }
     }
-    within(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
+    let keys = within(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
+    if keys.len() >= 2 {
+        keys
+    } else {
+        tick_values(lo, hi, Y_TICKS)
+    }
 }
 
 /// Whether point `k` of series `s` is drawn hollow.

@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use super::*;
+use crate::plot::line::log_keys;
 use crate::plot::{line_plot, line_plot_with, section_map, LineOptions, Series};
 
 #[test]
@@ -198,5 +199,24 @@ fn a_log_y_axis_is_ticked_at_decades_and_hollow_points_are_explained() {
     assert!(
         e.contains("has y = 0; a logarithmic y axis needs every y > 0"),
         "{e}"
+    );
+}
+
+#[test]
+fn log_ticks_are_decades_then_two_and_five_times_them_then_any() {
+    let close = |a: &[f64], b: &[f64]| {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * y)
+    };
+    let k = log_keys(2e-7, 0.03);
+    assert!(close(&k, &[1e-6, 1e-5, 1e-4, 1e-3, 1e-2]), "{k:?}");
+    let k = log_keys(1.5e-5, 6e-4);
+    assert!(close(&k, &[2e-5, 5e-5, 1e-4, 2e-4, 5e-4]), "{k:?}");
+    let k = log_keys(0.25, 0.45);
+    assert!(close(&k, &[0.3, 0.4]), "{k:?}");
+    // Too narrow for any of those: a linear axis's ticks, inside the range.
+    let k = log_keys(0.0285, 0.0299);
+    assert!(
+        k.len() >= 2 && k.iter().all(|v| (0.0285..=0.0299).contains(v)),
+        "{k:?}"
     );
 }
