@@ -492,6 +492,14 @@ fn bad_sweep_specifications_are_named_and_nothing_is_written() {
         &[],
         &["[sweep.vary] loading.velocity", "n >= 2"],
     );
+    assert_bad_sweep(
+        &format!("{BASE}\n[sweep]\nplot_scale = \"logarithmic\"\n"),
+        &["--vary", "velocity=1e-3,1e-2"],
+        &[
+            "[sweep] plot_scale = \"logarithmic\" is not a plot scale",
+            "allowed: \"auto\", \"linear\", \"log\"",
+        ],
+    );
 }
 
 #[test]

@@ -1,5 +1,5 @@
-//! Line plots of several series (sweeps, profiles, convergence histories) with a legend
-//! and an optional logarithmic x axis.
+//! Line plots of several series (sweeps, profiles, convergence histories) with a legend,
+//! optional logarithmic x and y axes, and optional hollow markers for chosen points.
 //!
 //! Layout rules shared by every line plot: tick labels that would run into each other
 //! are thinned (on a logarithmic axis decades are kept first, then 2 and 5 times a
@@ -9,9 +9,13 @@
 //! above the data for it. Series are coloured by the "tab10" cycle, except that a dashed
 //! and a solid series whose labels differ only after their last ", " (e.g.
 //! "surface, linear" and "surface, nonlinear") share a colour. A profile along the
-//! sliding direction (x) notes it under the plot.
+//! sliding direction (x) notes it under the plot. A logarithmic y axis is labelled at
+//! its decades (and at 2 and 5 times them when it spans fewer than three), in the x
+//! axis's tick style; hollow markers (a ring in the series' colour) are explained by a
+//! last legend line.
 
 use anyhow::Result;
+use plotters::coord::combinators::BindKeyPoints;
 use plotters::coord::ranged1d::{AsRangedCoord, Ranged, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -43,6 +47,8 @@ const Y_TICKS: usize = 8;
 
 /// Series with at most this many points also get a marker at each point.
 const MARKED_POINTS: usize = 30;
+/// Radius of a hollow marker, pixels (a filled one has 3).
+const HOLLOW_RADIUS: i32 = 5;
 
 /// Legend geometry (plotters' series-label box): sample line area and inner margin.
 const LEGEND_SAMPLE: i32 = 30;
@@ -62,6 +68,11 @@ pub(crate) struct LineFigure<'a> {
     pub x_label: &'a str,
     pub y_label: &'a str,
     pub log_x: bool,
+    pub log_y: bool,
+    /// Per series, per point: a hollow marker (missing entries: none).
+    pub hollow: &'a [Vec<bool>],
+    /// The legend line for hollow markers.
+    pub hollow_note: &'a str,
     /// Note the sliding direction (+x) under the plot: the x axis is the position x.
     pub sliding_note: bool,
 }
@@ -75,6 +86,51 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
         let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
         (lo - pad, hi + pad)
     }
+}
+
+/// `[lo, hi]` widened by 5 % of its decades on each side (a factor 2 around one value).
+fn padded_log(lo: f64, hi: f64) -> (f64, f64) {
+    let pad = if hi > lo { (hi / lo).powf(0.05) } else { 2.0 };
+    (lo / pad, hi * pad)
+}
+
+/// Ticks of a logarithmic axis over `[lo, hi]`: its decades, with 2 and 5 times each
+/// decade when there are fewer than three, and every integer times a decade when that
+/// still gives fewer than three; a range too narrow for two of those gets a linear
+/// axis's ticks.
+pub(crate) fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
+    let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let within = |mantissas: &[f64]| -> Vec<f64> {
+        (first..=last)
+            .flat_map(|e| mantissas.iter().map(move |m| m * 10f64.powi(e)))
+            .filter(|v| (lo..=hi).contains(v))
+            .collect()
+    };
+    for mantissas in [
+        &[1.0][..],
+        &[1.0, 2.0, 5.0],
+        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0],
+    ] {
+        let keys = within(mantissas);
+        if keys.len() >= 3 {
+            return keys;
+        }
+    }
+    let keys = within(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
+    if keys.len() >= 2 {
+        keys
+    } else {
+        tick_values(lo, hi, Y_TICKS)
+    }
+}
+
+/// Whether point `k` of series `s` is drawn hollow.
+fn is_hollow(hollow: &[Vec<bool>], s: usize, k: usize) -> bool {
+    hollow
+        .get(s)
+        .and_then(|h| h.get(k))
+        .copied()
+        .unwrap_or(false)
 }
 
 /// Index into [`CYCLE`] of each series: a new colour per series, except that a series
@@ -136,6 +192,9 @@ fn log_rank(v: f64) -> u8 {
     }
 }
 
+/// How a tick's value is written.
+type TickFormat = Box<dyn Fn(&f64) -> String>;
+
 /// A rectangle in pixels, `[x0, y0, x1, y1]`.
 type PixelBox = [i32; 4];
 
@@ -187,6 +246,11 @@ impl LineFigure<'_> {
             .collect();
         let (x_lo, x_hi) = min_max(&xs);
         let (y_lo, y_hi) = min_max(&ys);
+        let y_range = if self.log_y {
+            padded_log(y_lo, y_hi)
+        } else {
+            padded(y_lo, y_hi)
+        };
         let x_range = if self.log_x {
             // 2 % of the decades on each side, so that a decade at the end gets its label.
             let pad = if x_hi > x_lo {
@@ -200,17 +264,36 @@ impl LineFigure<'_> {
         } else {
             padded(x_lo, x_hi)
         };
-        (x_range, padded(y_lo, y_hi))
+        (x_range, y_range)
+    }
+
+    /// Whether any point is drawn hollow (the legend then explains it).
+    fn any_hollow(&self) -> bool {
+        self.hollow.iter().flatten().any(|&h| h)
+    }
+
+    /// The labelled ticks of the y axis over `y` and their format.
+    fn y_ticks(&self, y: (f64, f64)) -> (Vec<f64>, TickFormat) {
+        if self.log_y {
+            (log_keys(y.0, y.1), Box::new(log_tick))
+        } else {
+            (
+                tick_values(y.0, y.1, Y_TICKS),
+                Box::new(linear_ticks(y.0, y.1, Y_TICKS)),
+            )
+        }
     }
 
     fn labelled(&self) -> impl Iterator<Item = &Series> {
         self.series.iter().filter(|s| !s.label.is_empty())
     }
 
-    fn draw_on<DB, X>(
+    #[allow(clippy::too_many_arguments)]
+    fn draw_on<DB, X, Y>(
         &self,
         area: &DrawingArea<DB, Shift>,
         x_axis: impl Fn() -> X,
+        y_axis: impl Fn((f64, f64)) -> Y,
         x_keys: &[f64],
         x_rank: &dyn Fn(f64) -> u8,
         x_format: &dyn Fn(&f64) -> String,
@@ -220,14 +303,16 @@ impl LineFigure<'_> {
         DB: DrawingBackend,
         X: AsRangedCoord<Value = f64>,
         X::CoordDescType: ValueFormatter<f64>,
+        Y: AsRangedCoord<Value = f64>,
+        Y::CoordDescType: ValueFormatter<f64>,
     {
         let (title_area, body) = area.split_vertically(TITLE_STRIP);
         draw_title(&title_area, self.title)?;
         // The y label area fits the widest tick label, a gap and the rotated description.
         let y_area = |y: (f64, f64)| -> Result<u32> {
-            let format = linear_ticks(y.0, y.1, Y_TICKS);
+            let (keys, format) = self.y_ticks(y);
             let mut widest = 0;
-            for v in tick_values(y.0, y.1, Y_TICKS) {
+            for v in keys {
                 let (w, _) = area
                     .estimate_text_size(&format(&v), &text(TICK_SIZE))
                     .map_err(draw_err)?;
@@ -242,7 +327,7 @@ impl LineFigure<'_> {
                 .margin_right(RIGHT_MARGIN)
                 .x_label_area_size(62)
                 .y_label_area_size(y_area(y)?)
-                .build_cartesian_2d(x_axis(), y.0..y.1)
+                .build_cartesian_2d(x_axis(), y_axis(y))
                 .map_err(draw_err)
         };
 
@@ -252,7 +337,11 @@ impl LineFigure<'_> {
         for s in self.labelled() {
             legend_text.push_line(s.label.as_str());
         }
-        let any_label = self.labelled().next().is_some();
+        let note = self.any_hollow() && !self.hollow_note.is_empty();
+        if note {
+            legend_text.push_line(self.hollow_note);
+        }
+        let any_label = self.labelled().next().is_some() || note;
         let legend_dim = legend_text
             .estimate_dimension()
             .map(|(w, h)| (w + LEGEND_SAMPLE + 2 * LEGEND_MARGIN, h + 2 * LEGEND_MARGIN))
@@ -284,7 +373,11 @@ impl LineFigure<'_> {
             let r = ((legend_dim.1 + 2 * LEGEND_INSET + 2 * LEGEND_CLEARANCE) as f64
                 / dim.1.max(1) as f64)
                 .min(0.6);
-            y_range.1 += (y_range.1 - y_range.0) * r / (1.0 - r);
+            if self.log_y {
+                y_range.1 *= (y_range.1 / y_range.0).powf(r / (1.0 - r));
+            } else {
+                y_range.1 += (y_range.1 - y_range.0) * r / (1.0 - r);
+            }
             chart = build(y_range)?;
         }
 
@@ -319,6 +412,39 @@ impl LineFigure<'_> {
             }
         };
 
+        // Tick labels of y: on a logarithmic axis, those that clear each other (decades
+        // first); a linear axis's are spaced by plotters.
+        let (y_keys, y_format) = self.y_ticks(y_range);
+        let y_kept: Vec<f64> = if self.log_y {
+            let x_any = x_keys.first().copied().unwrap_or(1.0);
+            let mut centres = Vec::new();
+            let mut heights = Vec::new();
+            for &v in &y_keys {
+                let (_, h) = area
+                    .estimate_text_size(&y_format(&v), &text(TICK_SIZE))
+                    .map_err(draw_err)?;
+                centres.push(chart.backend_coord(&(x_any, v)).1);
+                heights.push(h as i32);
+            }
+            let ranks: Vec<u8> = y_keys.iter().map(|&v| log_rank(v)).collect();
+            let keep = thin_labels(&centres, &heights, &ranks);
+            y_keys
+                .iter()
+                .zip(&keep)
+                .filter(|(_, &k)| k)
+                .map(|(&v, _)| v)
+                .collect()
+        } else {
+            y_keys
+        };
+        let y_labels = |v: &f64| {
+            if !self.log_y || y_kept.contains(v) {
+                y_format(v)
+            } else {
+                String::new()
+            }
+        };
+
         chart
             .configure_mesh()
             .light_line_style(RGBColor(235, 235, 235))
@@ -326,7 +452,7 @@ impl LineFigure<'_> {
             .x_labels(X_TICKS)
             .y_labels(Y_TICKS)
             .x_label_formatter(&x_labels)
-            .y_label_formatter(&linear_ticks(y_range.0, y_range.1, Y_TICKS))
+            .y_label_formatter(&y_labels)
             .x_desc(self.x_label)
             .y_desc(self.y_label)
             .label_style(text(TICK_SIZE))
@@ -335,7 +461,7 @@ impl LineFigure<'_> {
             .map_err(draw_err)?;
 
         let colours = colour_indices(self.series);
-        for (s, &c) in self.series.iter().zip(&colours) {
+        for (k, (s, &c)) in self.series.iter().zip(&colours).enumerate() {
             let colour = CYCLE[c % CYCLE.len()];
             let style = colour.stroke_width(2);
             let points = s.x.iter().copied().zip(s.y.iter().copied());
@@ -357,11 +483,33 @@ impl LineFigure<'_> {
                         + PathElement::new(vec![(9 + gap, 0), (24, 0)], style)
                 });
             }
-            if s.x.len() <= MARKED_POINTS {
-                chart
-                    .draw_series(points.map(|p| Circle::new(p, 3, colour.filled())))
-                    .map_err(draw_err)?;
+            let filled = s.x.len() <= MARKED_POINTS;
+            for (m, p) in points.enumerate() {
+                if is_hollow(self.hollow, k, m) {
+                    chart
+                        .draw_series([
+                            Circle::new(p, HOLLOW_RADIUS, WHITE.filled()),
+                            Circle::new(p, HOLLOW_RADIUS, colour.stroke_width(2)),
+                        ])
+                        .map_err(draw_err)?;
+                } else if filled {
+                    chart
+                        .draw_series([Circle::new(p, 3, colour.filled())])
+                        .map_err(draw_err)?;
+                }
             }
+        }
+        if note {
+            // A legend line of its own: a hollow marker in grey, no line.
+            let grey = RGBColor(90, 90, 90);
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                .map_err(draw_err)?
+                .label(self.hollow_note)
+                .legend(move |(x, y)| {
+                    EmptyElement::at((x, y))
+                        + Circle::new((12, 0), HOLLOW_RADIUS, grey.stroke_width(2))
+                });
         }
         if any_label {
             chart
@@ -409,28 +557,28 @@ impl Figure for LineFigure<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let ((x0, x1), y_range) = self.ranges();
+        // The y axis: plotters' linear one, or a logarithmic one ticked at `log_keys`.
+        let log_y = |y: (f64, f64)| (y.0..y.1).log_scale().with_key_points(log_keys(y.0, y.1));
+        let linear_y = |y: (f64, f64)| y.0..y.1;
         if self.log_x {
             let coord: LogCoord<f64> = (x0..x1).log_scale().into();
             let keys = coord.key_points(X_TICKS);
-            self.draw_on(
-                root,
-                || (x0..x1).log_scale(),
-                &keys,
-                &log_rank,
-                &log_tick,
-                y_range,
-            )
+            let x_axis = || (x0..x1).log_scale();
+            if self.log_y {
+                self.draw_on(root, x_axis, log_y, &keys, &log_rank, &log_tick, y_range)
+            } else {
+                self.draw_on(root, x_axis, linear_y, &keys, &log_rank, &log_tick, y_range)
+            }
         } else {
             let coord: RangedCoordf64 = (x0..x1).into();
             let keys = coord.key_points(X_TICKS);
-            self.draw_on(
-                root,
-                || x0..x1,
-                &keys,
-                &|_| 0,
-                &linear_ticks(x0, x1, X_TICKS),
-                y_range,
-            )
+            let format = linear_ticks(x0, x1, X_TICKS);
+            let x_axis = || x0..x1;
+            if self.log_y {
+                self.draw_on(root, x_axis, log_y, &keys, &|_| 0, &format, y_range)
+            } else {
+                self.draw_on(root, x_axis, linear_y, &keys, &|_| 0, &format, y_range)
+            }
         }
     }
 }

@@ -53,6 +53,22 @@ pub struct Series {
     pub dashed: bool,
 }
 
+/// How [`line_plot_with`] draws beyond [`line_plot`]: the scales of the axes and which
+/// points get a hollow marker.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LineOptions {
+    /// Logarithmic x axis (every x must be > 0).
+    pub log_x: bool,
+    /// Logarithmic y axis (every y must be > 0), with the x axis's log tick labels.
+    pub log_y: bool,
+    /// Per series, per point: draw the point as a hollow marker (a ring in the series'
+    /// colour), whatever the number of points. Empty, or shorter than the series, for
+    /// none.
+    pub hollow: Vec<Vec<bool>>,
+    /// The legend's line that says what a hollow marker means, shown when one is drawn.
+    pub hollow_note: String,
+}
+
 /// Refuses non-finite entries, naming the argument and the first bad index.
 fn check_finite(what: &str, values: &[f64]) -> Result<()> {
     if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
@@ -182,7 +198,23 @@ pub fn line_plot(
     y_label: &str,
     log_x: bool,
 ) -> Result<()> {
-    line_figure(path, series, title, x_label, y_label, log_x, false)
+    let options = LineOptions {
+        log_x,
+        ..LineOptions::default()
+    };
+    line_figure(path, series, title, x_label, y_label, &options, false)
+}
+
+/// [`line_plot`] with the axes' scales and hollow markers of `options`.
+pub fn line_plot_with(
+    path: &Path,
+    series: &[Series],
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    options: &LineOptions,
+) -> Result<()> {
+    line_figure(path, series, title, x_label, y_label, options, false)
 }
 
 /// [`line_plot`] of profiles along the sliding direction x (linear x axis), with the note
@@ -194,7 +226,15 @@ pub fn profile_plot(
     x_label: &str,
     y_label: &str,
 ) -> Result<()> {
-    line_figure(path, series, title, x_label, y_label, false, true)
+    line_figure(
+        path,
+        series,
+        title,
+        x_label,
+        y_label,
+        &LineOptions::default(),
+        true,
+    )
 }
 
 fn line_figure(
@@ -203,7 +243,7 @@ fn line_figure(
     title: &str,
     x_label: &str,
     y_label: &str,
-    log_x: bool,
+    options: &LineOptions,
     sliding_note: bool,
 ) -> Result<()> {
     if series.is_empty() {
@@ -217,9 +257,14 @@ fn line_figure(
         check_len(&format!("{name} y"), s.y.len(), s.x.len(), "one y per x")?;
         check_finite(&format!("{name} x"), &s.x)?;
         check_finite(&format!("{name} y"), &s.y)?;
-        if log_x {
+        if options.log_x {
             if let Some(v) = s.x.iter().find(|&&v| v <= 0.0) {
                 bail!("{name} has x = {v}; a logarithmic x axis needs every x > 0");
+            }
+        }
+        if options.log_y {
+            if let Some(v) = s.y.iter().find(|&&v| v <= 0.0) {
+                bail!("{name} has y = {v}; a logarithmic y axis needs every y > 0");
             }
         }
     }
@@ -235,7 +280,10 @@ fn line_figure(
         title: &pretty(title),
         x_label: &pretty(x_label),
         y_label: &pretty(y_label),
-        log_x,
+        log_x: options.log_x,
+        log_y: options.log_y,
+        hollow: &options.hollow,
+        hollow_note: &pretty(&options.hollow_note),
         sliding_note,
     };
     output::write_figure(path, &figure)

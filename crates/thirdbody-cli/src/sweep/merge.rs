@@ -42,7 +42,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<MergeReport> {
     let spec = read_sweep_file(first)?;
     for dir in &inputs[1..] {
         let other = read_sweep_file(dir)?;
-        if other != spec {
+        if !other.same_sweep(&spec) {
             return Err(SweepError::Folder(format!(
                 "{} and {} hold different sweeps ({}); only shards of one sweep can be merged",
                 first.display(),

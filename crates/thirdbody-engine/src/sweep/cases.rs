@@ -16,6 +16,7 @@ use std::sync::Mutex;
 use thirdbody::case_file::{parse_case_file, CaseFile};
 use thirdbody::HeightMap;
 
+use super::plot::PlotScale;
 use super::spec::{apply, read_spec, Axis, Spec, VARIANT_AXIS};
 use super::values::KeyValue;
 use super::SweepError;
@@ -76,6 +77,11 @@ impl Sweep {
     /// The axes, in order.
     pub fn axes(&self) -> &[Axis] {
         &self.spec.axes
+    }
+
+    /// The mu axis of the plot (`[sweep] plot_scale`).
+    pub fn plot_scale(&self) -> PlotScale {
+        self.spec.plot_scale
     }
 
     /// The base case without `[sweep]`, as TOML text.

@@ -22,6 +22,7 @@ use serde_json::Value;
 
 use crate::atomic::{is_temporary, remove_dead_temporaries, take_lock, write_bytes, LockHeld};
 
+use super::plot::PlotScale;
 use super::values::KeyValue;
 use super::{Sweep, SweepError};
 
@@ -43,6 +44,10 @@ pub struct SweepFile {
     pub axes: Vec<AxisEntry>,
     /// Every case in product order.
     pub cases: Vec<CaseEntry>,
+    /// The mu axis of the plot; left out when automatic. A presentation choice, not
+    /// part of what the sweep is: [`SweepFile::same_sweep`] ignores it.
+    #[serde(default, skip_serializing_if = "PlotScale::is_auto")]
+    pub plot_scale: PlotScale,
 }
 
 /// One axis in `sweep.json`.
@@ -125,7 +130,17 @@ impl SweepFile {
                     levels: sweep.levels(k),
                 })
                 .collect(),
+            plot_scale: sweep.plot_scale(),
         }
+    }
+
+    /// Whether `other` describes the same sweep: everything but the plot's scale.
+    pub fn same_sweep(&self, other: &SweepFile) -> bool {
+        *self
+            == SweepFile {
+                plot_scale: self.plot_scale,
+                ..other.clone()
+            }
     }
 
     /// The labels of case `index`, one per axis.
@@ -278,7 +293,9 @@ impl Folder {
         };
         remove_dead_temporaries(&dir.join(CASES_DIR));
         remove_dead_temporaries(dir);
-        if !dir.join(SPEC_FILE).exists() {
+        // Written when new, and again when only the plot's scale changed (so that a merge
+        // draws the plot as this run does).
+        if read_sweep_file(dir).ok().as_ref() != Some(spec) {
             let mut text = serde_json::to_string_pretty(spec)?;
             text.push('\n');
             write_bytes(&dir.join(SPEC_FILE), text.as_bytes())?;
@@ -311,7 +328,7 @@ fn check_usable(dir: &Path, spec: &SweepFile) -> Result<()> {
     }
     if dir.join(SPEC_FILE).exists() {
         let stored = read_sweep_file(dir)?;
-        if stored != *spec {
+        if !stored.same_sweep(spec) {
             return Err(SweepError::Folder(format!(
                 "{} holds another sweep ({}); use another --out folder, or delete it to \
                  start again",
@@ -365,6 +382,7 @@ mod tests {
             base_case: "x".into(),
             axes: vec![],
             cases: vec![],
+            plot_scale: PlotScale::Auto,
         };
         // Process 1 (init) is alive on Linux.
         fs::write(dir.path().join(LOCK_FILE), "1\n").unwrap();
@@ -383,8 +401,15 @@ mod tests {
         assert_eq!(held.trim(), std::process::id().to_string());
         drop(folder);
         assert!(!dir.path().join(LOCK_FILE).exists());
-        // Same sweep again: fine; another sweep: refused.
+        // Same sweep again: fine; another plot scale: the same sweep, recorded.
         Folder::open(dir.path(), &spec).unwrap();
+        let log = SweepFile {
+            plot_scale: PlotScale::Log,
+            ..spec.clone()
+        };
+        drop(Folder::open(dir.path(), &log).unwrap());
+        assert_eq!(read_sweep_file(dir.path()).unwrap(), log);
+        // Another sweep: refused.
         let other = SweepFile {
             base_case: "y".into(),
             ..spec

@@ -139,6 +139,7 @@ mod tests {
                     levels: vec![1],
                 },
             ],
+            plot_scale: Default::default(),
         };
         let records = [
             Record {

@@ -12,6 +12,7 @@
 
 use toml::{Table, Value};
 
+use super::plot::PlotScale;
 use super::values::{check_distinct, parse_values, value_label, KeyValue};
 use super::SweepError;
 
@@ -55,6 +56,8 @@ pub struct Spec {
     pub base: Table,
     /// The axes of the product.
     pub axes: Vec<Axis>,
+    /// The mu axis of the plot (`[sweep] plot_scale`).
+    pub plot_scale: PlotScale,
 }
 
 /// Reads the case text's `[sweep]` section and the `--vary` arguments.
@@ -80,12 +83,21 @@ pub fn read_spec(case_text: &str, vary: &[String]) -> Result<Spec, SweepError> {
     let known = leaf_keys(&base, "");
     let mut axes = Vec::new();
     for (key, _) in section.iter() {
-        if key != "vary" && key != "variants" {
+        if !["vary", "variants", "plot_scale"].contains(&key.as_str()) {
             return Err(SweepError::spec(format!(
-                "[sweep] has an unknown key `{key}`; allowed: vary, variants"
+                "[sweep] has an unknown key `{key}`; allowed: vary, variants, plot_scale"
             )));
         }
     }
+    let plot_scale = match section.get("plot_scale") {
+        None => PlotScale::default(),
+        Some(v) => v.as_str().and_then(PlotScale::from_name).ok_or_else(|| {
+            SweepError::spec(format!(
+                "[sweep] plot_scale = {v} is not a plot scale; allowed: {}",
+                PlotScale::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+            ))
+        })?,
+    };
     if let Some(variants) = section.get("variants") {
         axes.push(variant_axis(variants, &known)?);
     }
@@ -146,7 +158,11 @@ pub fn read_spec(case_text: &str, vary: &[String]) -> Result<Spec, SweepError> {
         }
     }
     check_axes(&axes, &base)?;
-    Ok(Spec { base, axes })
+    Ok(Spec {
+        base,
+        axes,
+        plot_scale,
+    })
 }
 
 fn key_axis(key: String, values: Vec<KeyValue>, log_spaced: bool) -> Axis {
@@ -478,9 +494,40 @@ cells = [64, 64]
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("unknown key `varies`; allowed: vary, variants"),
+            e.contains("unknown key `varies`; allowed: vary, variants, plot_scale"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn the_plot_scale_is_read_from_the_sweep_section() {
+        let with = |line: &str| read_spec(&format!("{BASE}\n[sweep]\n{line}\n"), &[]);
+        assert_eq!(vary(&["p0=1,2"]).unwrap().plot_scale, PlotScale::Auto);
+        for (name, scale) in [
+            ("auto", PlotScale::Auto),
+            ("linear", PlotScale::Linear),
+            ("log", PlotScale::Log),
+        ] {
+            let spec = with(&format!("plot_scale = \"{name}\"")).unwrap();
+            assert_eq!(spec.plot_scale, scale);
+            // Not a key of the case.
+            assert!(get(&spec.base, "sweep.plot_scale").is_none());
+        }
+        // The paper's Fig. 8 keeps a linear mu axis.
+        let fig8 = include_str!("../../../../examples/sweeps/paper_fig8.toml");
+        assert_eq!(read_spec(fig8, &[]).unwrap().plot_scale, PlotScale::Linear);
+        for (bad, shown) in [("\"logarithmic\"", "\"logarithmic\""), ("1", "1")] {
+            let e = with(&format!("plot_scale = {bad}"))
+                .unwrap_err()
+                .to_string();
+            assert_eq!(
+                e,
+                format!(
+                    "[sweep] plot_scale = {shown} is not a plot scale; allowed: \"auto\", \
+                     \"linear\", \"log\""
+                )
+            );
+        }
     }
 
     #[test]

@@ -139,7 +139,7 @@ fn overlap(a: &PxBox, b: &PxBox) -> bool {
 }
 
 /// Every layout defect found in the SVG at `path`, as readable lines.
-fn layout_defects(path: &Path) -> Vec<String> {
+pub(super) fn layout_defects(path: &Path) -> Vec<String> {
     let d = read_svg(path);
     let mut defects = Vec::new();
     for (k, (a, ba)) in d.texts.iter().enumerate() {

@@ -3,7 +3,8 @@
 use std::path::Path;
 
 use super::*;
-use crate::plot::{line_plot, section_map, Series};
+use crate::plot::line::log_keys;
+use crate::plot::{line_plot, line_plot_with, section_map, LineOptions, Series};
 
 #[test]
 fn svg_files_carry_the_texts_and_the_raster() {
@@ -109,5 +110,113 @@ fn line_plot_renders_linear_and_log_axes() {
     assert_eq!(
         listing(dir.path()),
         vec!["log.png", "single.PNG", "single.svg", "two.svg"]
+    );
+}
+
+#[test]
+fn a_log_y_axis_is_ticked_at_decades_and_hollow_points_are_explained() {
+    let dir = tempfile::tempdir().unwrap();
+    // Two curves three decades apart, as a Maxwell and a Kelvin-Voigt layer's mu.
+    let x: Vec<f64> = (0..11).map(|k| 10f64.powf(-4.0 + 0.5 * k as f64)).collect();
+    let high: Vec<f64> = x.iter().map(|v| 0.02 / (1.0 + v.sqrt())).collect();
+    let low: Vec<f64> = x.iter().map(|v| 2e-3 * v / (1.0 + v * v)).collect();
+    let series = [
+        Series {
+            label: "maxwell".into(),
+            x: x.clone(),
+            y: high,
+            dashed: false,
+        },
+        Series {
+            label: "kelvin_voigt".into(),
+            x,
+            y: low,
+            dashed: false,
+        },
+    ];
+    let mut hollow = vec![vec![false; 11], vec![false; 11]];
+    hollow[1][0] = true;
+    hollow[1][1] = true;
+    hollow[0][10] = true;
+    let options = LineOptions {
+        log_x: true,
+        log_y: true,
+        hollow,
+        hollow_note: "hollow: result carries a warning".into(),
+    };
+    let path = dir.path().join("mu.svg");
+    line_plot_with(&path, &series, "Sweep", "V'", "mu", &options).unwrap();
+    let svg = std::fs::read_to_string(&path).unwrap();
+    // One ring per warned point and one in the legend; the other 19 points filled.
+    let rings = svg
+        .split("<circle")
+        .skip(1)
+        .filter(|c| c.split('>').next().unwrap().contains("fill=\"none\""))
+        .count();
+    assert_eq!(rings, 3 + 1, "{svg}");
+    assert!(svg.contains("hollow: result carries a warning"));
+    // The y axis (mu from 2e-7 to 0.02) is labelled at its decades only, in the x
+    // axis's style; "1e-4" and "0.001" are also x ticks.
+    let texts: Vec<&str> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>').map(|(_, rest)| rest))
+        .map(|t| t.split('<').next().unwrap().trim())
+        .collect();
+    let count = |label: &str| texts.iter().filter(|t| **t == label).count();
+    for (label, n) in [
+        ("1e-6", 1),
+        ("1e-5", 1),
+        ("1e-4", 2),
+        ("0.001", 2),
+        ("0.01", 2),
+    ] {
+        assert_eq!(count(label), n, "tick {label} in {texts:?}");
+    }
+    assert_eq!(count("2e-5") + count("5e-5"), 0, "{texts:?}");
+    assert!(
+        super::layout::layout_defects(&path).is_empty(),
+        "{:?}",
+        super::layout::layout_defects(&path)
+    );
+    // Without hollow points there is no note; a log y axis refuses y <= 0.
+    let path = dir.path().join("plain.svg");
+    let options = LineOptions {
+        log_y: true,
+        log_x: true,
+        hollow_note: "hollow: result carries a warning".into(),
+        ..LineOptions::default()
+    };
+    line_plot_with(&path, &series, "Sweep", "V'", "mu", &options).unwrap();
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(!svg.contains("hollow"));
+    assert!(!svg.contains("r=\"5\""));
+    let mut zero = series.clone();
+    zero[1].y[3] = 0.0;
+    let e = line_plot_with(&path, &zero, "Sweep", "V'", "mu", &options)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("has y = 0; a logarithmic y axis needs every y > 0"),
+        "{e}"
+    );
+}
+
+#[test]
+fn log_ticks_are_decades_then_two_and_five_times_them_then_any() {
+    let close = |a: &[f64], b: &[f64]| {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * y)
+    };
+    let k = log_keys(2e-7, 0.03);
+    assert!(close(&k, &[1e-6, 1e-5, 1e-4, 1e-3, 1e-2]), "{k:?}");
+    let k = log_keys(1.5e-5, 6e-4);
+    assert!(close(&k, &[2e-5, 5e-5, 1e-4, 2e-4, 5e-4]), "{k:?}");
+    let k = log_keys(0.25, 0.45);
+    assert!(close(&k, &[0.3, 0.4]), "{k:?}");
+    // Too narrow for any of those: a linear axis's ticks, inside the range.
+    let k = log_keys(0.0285, 0.0299);
+    assert!(
+        k.len() >= 2 && k.iter().all(|v| (0.0285..=0.0299).contains(v)),
+        "{k:?}"
     );
 }
