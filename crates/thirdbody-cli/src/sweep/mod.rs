@@ -17,7 +17,7 @@ pub mod plot;
 pub mod run;
 
 // The cases, records and results.csv, shared with the Python package.
-pub use thirdbody_engine::sweep::{cases, folder, record, results, spec, values};
+pub use thirdbody_engine::sweep::{cases, folder, plot_scale, record, results, spec, values};
 pub use thirdbody_engine::sweep::{Sweep, SweepError};
 
 pub use merge::{merge, MergeReport};

@@ -16,7 +16,7 @@ use std::sync::Mutex;
 use thirdbody::case_file::{parse_case_file, CaseFile};
 use thirdbody::HeightMap;
 
-use super::plot::PlotScale;
+use super::plot_scale::PlotScale;
 use super::spec::{apply, read_spec, Axis, Spec, VARIANT_AXIS};
 use super::values::KeyValue;
 use super::SweepError;

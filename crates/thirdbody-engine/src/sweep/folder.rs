@@ -22,7 +22,7 @@ use serde_json::Value;
 
 use crate::atomic::{is_temporary, remove_dead_temporaries, take_lock, write_bytes, LockHeld};
 
-use super::plot::PlotScale;
+use super::plot_scale::PlotScale;
 use super::values::KeyValue;
 use super::{Sweep, SweepError};
 

@@ -6,6 +6,7 @@
 
 pub mod cases;
 pub mod folder;
+pub mod plot_scale;
 pub mod record;
 pub mod results;
 pub mod spec;

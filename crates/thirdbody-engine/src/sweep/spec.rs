@@ -12,7 +12,7 @@
 
 use toml::{Table, Value};
 
-use super::plot::PlotScale;
+use super::plot_scale::PlotScale;
 use super::values::{check_distinct, parse_values, value_label, KeyValue};
 use super::SweepError;
 
