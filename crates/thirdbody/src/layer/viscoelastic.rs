@@ -823,16 +823,8 @@ mod tests {
         // (linear in each cell, module docs), read at each cell centre.
         let (c, tau, v, h) = (0.03, 0.7, 0.4, 0.1);
         for v in [v, 0.02, 4.0] {
-            let layer = Layer {
-                rheology: Rheology::KelvinVoigt {
-                    compliance: c,
-                    retardation_time: tau,
-                },
-                law: ComplianceLaw::Linear,
-                integration: Integration::Exact,
-            };
             let nx = 7;
-            let op = ViscoelasticRows::new(layer, nx, 1, h, v);
+            let op = ViscoelasticRows::new(linear_kelvin_voigt(c, tau), nx, 1, h, v);
             let p: Vec<f64> = (0..nx).map(|k| 0.001 * (1 + (k * 3) % 5) as f64).collect();
             let mut w = vec![0.0; nx];
             op.row_sweep(&p, &mut w);
@@ -864,6 +856,18 @@ mod tests {
                     w[i]
                 );
             }
+        }
+    }
+
+    /// A Kelvin–Voigt layer of compliance `c` and retardation time `tau`, linear law.
+    fn linear_kelvin_voigt(c: f64, tau: f64) -> Layer {
+        Layer {
+            rheology: Rheology::KelvinVoigt {
+                compliance: c,
+                retardation_time: tau,
+            },
+            law: ComplianceLaw::Linear,
+            integration: Integration::Exact,
         }
     }
 
@@ -1008,14 +1012,7 @@ mod tests {
         // the free relaxation behind it), at a creep length of 1.7 cells and of a
         // fiftieth of a cell.
         let (c, tau, v, h) = (0.02, 0.5, 0.3, 0.1);
-        let layer = Layer {
-            rheology: Rheology::KelvinVoigt {
-                compliance: c,
-                retardation_time: tau,
-            },
-            law: ComplianceLaw::Linear,
-            integration: Integration::Exact,
-        };
+        let layer = linear_kelvin_voigt(c, tau);
         let p = [0.0, 0.002, 0.004, 0.003, 0.001, 0.0];
         for v in [v, 0.004] {
             let op = ViscoelasticRows::new(layer.clone(), p.len(), 1, h, v);
