@@ -612,7 +612,7 @@ mod tests {
     #[test]
     fn a_creeping_residual_is_stagnation_and_a_falling_one_is_not() {
         let mut seen = 0;
-        // -0.1% per iteration (the runaway Newton solve): stagnated.
+        // -0.1% per iteration (a runaway Newton solve once seen): stagnated.
         let creeping: Vec<f64> = (0..60).map(|k| 0.4 * 0.999f64.powi(k)).collect();
         assert!(monitor_after(&creeping, &mut |_| {
             seen += 1;
