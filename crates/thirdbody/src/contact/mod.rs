@@ -346,7 +346,7 @@ pub fn solve_observed(
 /// Solves a case, taking plans and kernel spectra from the caller's `kernels` (and
 /// keeping new ones there), reporting progress to `observer`. The window is the
 /// case's fixed one, or chosen automatically and enlarged or refitted until the
-/// contact fits (design's section 2). The solve runs in the paper's variables
+/// contact fits (docs/architecture.md (numerics)). The solve runs in the paper's variables
 /// (R = E2 = T = 1, rounded to powers of two); the solution, the errors and the windows reported to
 /// `observer` are in the case's units.
 pub fn solve_with(
