@@ -1,4 +1,4 @@
-//! Issue 5, acceptance 4: the speed-up of a sweep on 2 cores. The paper's Fig. 8 sweep
+//! The speed-up of a sweep on 2 cores. The paper's Fig. 8 sweep
 //! (`examples/sweeps/paper_fig8.toml`: 8 velocities x 3 sigmoid laws + the linear law,
 //! 32 cases at 128 x 128) is run into a fresh folder with 1 and with 2 threads; each
 //! iteration solves every case and writes the records, results.csv and the plot. The

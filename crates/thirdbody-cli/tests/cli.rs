@@ -1,5 +1,5 @@
-//! End-to-end tests of the `thirdbody` binary: every bad input of issue 2's
-//! acceptance 7 gives exit code 2, one stderr line naming the field and the allowed
+//! End-to-end tests of the `thirdbody` binary: every bad input of the
+//! case file gives exit code 2, one stderr line naming the field and the allowed
 //! range, and no file in the output folder; a successful solve writes every output
 //! with the documented keys and shapes.
 
@@ -53,7 +53,7 @@ velocity = 1e-2
 cells = [32, 32]
 "#;
 
-/// Every key issue 2 requires in summary.json (plus the extras documented).
+/// Every key summary.json must hold (the required ones plus the extras documented).
 const SUMMARY_KEYS: [&str; 25] = [
     "normal_load",
     "penetration",

@@ -1,4 +1,4 @@
-//! The shell commands of README.md and docs/*.md run as written (issue 15): every
+//! The shell commands of README.md and docs/*.md run as written: every
 //! line of a fenced `sh` block, in a fresh folder that holds a link to the bundled
 //! `examples/`, with the built `thirdbody` first on the PATH. `cargo run --release --`
 //! is the same program, so it is replaced by that binary (a nested cargo would wait

@@ -1,4 +1,4 @@
-//! Friction from a height-map slider (issue 9 part 2): the slope in the friction sum
+//! Friction from a height-map slider: the slope in the friction sum
 //! `mu = sum(p df/dx) h^2 / Q` was the one-sided slope of the bilinear interpolant at
 //! a node, which biased mu by hm / (2R) when the map's nodes fall on the cell centres.
 //! A sphere written as a map (NPY and CSV, read through the CLI as a user's file is),

@@ -1,4 +1,4 @@
-//! Hostile input at the command line (issue 14): each ends with one line naming the
+//! Hostile input at the command line: each ends with one line naming the
 //! cause and exit code 2, or succeeds; none panics (exit 101) or aborts (134).
 
 mod common;
@@ -139,7 +139,7 @@ fn a_folder_locked_by_a_live_run_is_refused_and_the_root_is_not_an_output_folder
 
 #[test]
 fn two_sweeps_started_together_on_one_folder_never_break_each_other() {
-    // The issue saw "cannot write .../sweep.json: No such file or directory" in 2 of
+    // An earlier version gave "cannot write .../sweep.json: No such file or directory" in 2 of
     // 50 trials: the second run took over a lock whose holder had not yet written its
     // id, then removed the first run's temporaries. Now one runs and the other is
     // refused with the lock message (or, if the first has finished, resumes).
@@ -245,7 +245,7 @@ fn outputs(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
 
 #[test]
 fn four_solves_started_together_on_one_folder_leave_one_runs_outputs() {
-    // The issue saw a folder mixing files of different runs in 2 of 40 trials. Four
+    // An earlier version left a folder mixing files of different runs in 2 of 40 trials. Four
     // different cases (three loads without a layer, one with a layer) start at once;
     // each run finishes or is refused with the lock message, and the folder then
     // holds exactly one run's outputs: its summary's load is its case.toml's, and
@@ -340,7 +340,7 @@ fn a_solve_killed_at_any_moment_leaves_no_half_file_and_the_next_run_cleans_up()
     // kill -9 at 12 moments spread over a run (solve and writing, 0.5 s): every file
     // left is whole (byte-equal to a finished run's), and the next run into the
     // folder finishes, takes over the dead run's lock and removes its temporaries
-    // (the issue found up to 346 MB of them left behind).
+    // (an earlier version left up to 346 MB of them behind).
     let root = tempfile::tempdir().unwrap();
     let case = root.path().join("case.toml");
     std::fs::write(

@@ -1,4 +1,4 @@
-//! Provenance in every result (issue 12, acceptance 7): `summary.json` and every row
+//! Provenance in every result: `summary.json` and every row
 //! of `results.csv` carry the thirdbody version, the git commit the program was built
 //! from and a hash of the canonical case; `thirdbody cite` prints the references.
 

@@ -1,4 +1,4 @@
-//! Refactoring guard (issue 10): every bundled example and every case of `thirdbody
+//! Refactoring guard: every bundled example and every case of `thirdbody
 //! reproduce` gives the numbers recorded from the code before the change, to 1e-12
 //! relative. The records are in `tests/data/`: `recorded_summaries.json` holds each
 //! example's `summary.json` (timing keys left out); `recorded_reproduce.json` holds a

@@ -1,4 +1,4 @@
-//! `thirdbody reproduce` at a coarse resolution (issue 5, acceptance 3): every figure
+//! `thirdbody reproduce` at a coarse resolution: every figure
 //! of the paper (2 to 12) is written as PNG, SVG and CSV, every number in the data
 //! and in the report is finite, and the report names every figure with the paper's
 //! printed numbers beside ours.
@@ -58,7 +58,7 @@ fn every_figure_is_written_with_finite_data_and_a_report() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    // The numbers are those recorded before the assembly stage (issue 10).
+    // The numbers are those recorded before the assembly stage.
     common::recorded::check_reproduce_data(&dir);
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
@@ -123,7 +123,7 @@ fn every_figure_is_written_with_finite_data_and_a_report() {
         assert!(v.is_finite(), "{line}");
     }
 
-    // Fig. 8 physics (issue 5, acceptance 1, here on a coarse grid): mu falls with V'
+    // Fig. 8 physics (here on a coarse grid): mu falls with V'
     // on every curve, and the nonlinear curves lie below the linear one.
     let fig8 = &curves["fig08a_mu_vs_velocity.csv"];
     let mut by_series: BTreeMap<&str, Vec<(f64, f64)>> = BTreeMap::new();

@@ -1,4 +1,4 @@
-//! End-to-end tests of the stress outputs (issue 4): `[stress]` in a case file makes
+//! End-to-end tests of the stress outputs: `[stress]` in a case file makes
 //! `thirdbody solve` write the sections, plots, VTK block and the `stress` summary;
 //! `thirdbody stress DIR` computes the same from a solved folder; bad requests are
 //! refused with exit code 2, naming the key, and leave no file behind.

@@ -1,7 +1,6 @@
-//! Issue 5's sweep engine end to end: the paper's Fig. 8 sweep (acceptance 1), a sweep
-//! killed midway and resumed (acceptance 2), shards plus merge against the unsharded
-//! run (acceptance 2), failed cases as failed rows, and bad sweep specifications
-//! (acceptance 5). The speed-up on 2 cores (acceptance 4) is the `sweep` bench.
+//! The sweep engine end to end: the paper's Fig. 8 sweep, a sweep killed midway and
+//! resumed, shards plus merge against the unsharded run, failed cases as failed rows,
+//! and bad sweep specifications. The speed-up on 2 cores is the `sweep` bench.
 
 use std::collections::BTreeMap;
 use std::fs;

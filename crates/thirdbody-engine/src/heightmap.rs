@@ -164,7 +164,7 @@ mod tests {
         let path = dir.path().join("m.npy");
         ndarray_npy::write_npy(&path, &a).unwrap();
         assert!(check_npy_size(&path).is_ok());
-        // The 138-byte file: a version-1 header and no data.
+        // A reported 138-byte file: a version-1 header and no data.
         let mut dict =
             "{'descr': '<f8', 'fortran_order': False, 'shape': (100000000, 100000000), }"
                 .to_string();

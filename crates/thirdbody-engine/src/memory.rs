@@ -1,4 +1,4 @@
-//! Refusing work that cannot fit in memory before it starts (issue 14): the
+//! Refusing work that cannot fit in memory before it starts: the
 //! library estimates what a solve and a stress request take
 //! ([`thirdbody::Case::estimated_solve_bytes`],
 //! [`thirdbody::stress::StressRequest::estimated_bytes`]); this module compares that
@@ -87,7 +87,7 @@ mod tests {
     #[test]
     fn a_grid_that_cannot_fit_is_refused_with_its_estimate() {
         let gib = (1u64 << 30) as f64;
-        // The issue's 16384² grid needs far more than a 24 GiB machine has.
+        // A reported 16384² grid needs far more than a 24 GiB machine has.
         let e = check(&case(16384), None, 1, Some(24.0 * gib)).unwrap_err();
         assert!(
             e.contains("grid.cells = [16384, 16384]") && e.contains("GiB"),

@@ -1,4 +1,4 @@
-"""Benchmarks of the Python package (issue 12, acceptance 4 and 5); prints medians.
+"""Benchmarks of the Python package; prints medians.
 
     python crates/thirdbody-py/bench/bench_python.py [--repeats N]
 

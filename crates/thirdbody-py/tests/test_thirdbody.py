@@ -1,6 +1,6 @@
-"""The Python package against the command-line program (issue 12, acceptance 2, 3, 6
-in part): the same summaries and fields for the bundled examples, the same messages
-for bad input, and solves that run concurrently in threads (the GIL is released).
+"""The Python package against the command-line program: the same summaries and
+fields for the bundled examples, the same messages for bad input, and solves that run
+concurrently in threads (the GIL is released).
 
 The CLI binary is the one `cargo test --release` (or `cargo build --release`) built:
 `target/release/thirdbody`, or the path in THIRDBODY_BIN.

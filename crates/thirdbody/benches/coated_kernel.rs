@@ -1,5 +1,5 @@
-//! Speed of the coated body (issue 3): the influence kernel on a 256 x 256 grid
-//! (acceptance 6: under 1 s) on the grid of the paper's Fig. 7 case (window
+//! Speed of the coated body: the influence kernel on a 256 x 256 grid
+//! (target: under 1 s) on the grid of the paper's Fig. 7 case (window
 //! 0.12 R wide, cell = 0.12 / 256 R, E1/E2 = 3, coating thickness h1' = 0.001 and
 //! 0.02, R = E2 = 1), and the whole Fig. 7 solve on 256 x 256 cells with the
 //! automatic window (Q' = 5e-6, V' = 1e-3, nu1 = nu2 = 0.3, C' = 0.02, sigmoid law

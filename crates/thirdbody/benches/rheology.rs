@@ -1,4 +1,4 @@
-//! Issue 11, acceptance 7: a 10-branch Prony layer at 256 x 256 against the paper's
+//! A 10-branch Prony layer at 256 x 256 against the paper's
 //! Maxwell layer on the same case (paper Fig. 3: sphere, Q' = 5e-6, sigmoid law
 //! delta = 0.5, p0' = 0.001, V' = 1e-3), each solve including its kernel set-up.
 

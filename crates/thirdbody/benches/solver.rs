@@ -1,4 +1,4 @@
-//! Issue 2, acceptance 6: solve times of the paper's Fig. 3 case at 256 x 256 and of
+//! Solve times of the paper's Fig. 3 case at 256 x 256 and of
 //! the layer-free Hertz case (window side 0.048, Q' = 5e-6, residual 1e-10) at
 //! 256 x 256 and 1024 x 1024, including the kernel set-up. The cases are the bundled
 //! `examples/paper_fig3.toml` and `examples/hertz_benchmark.toml`.

@@ -1,4 +1,4 @@
-//! Subsurface-stress speed (issue 4, acceptance 5): the XZ section of 256 points
+//! Subsurface-stress speed: the XZ section of 256 points
 //! along x by 128 depths under a 256 x 256 Hertz pressure field, and a
 //! 128 x 128 x 64 block.
 

@@ -1,4 +1,4 @@
-//! Issue 13's benchmark: for the Hertz benchmark case and the paper's Fig. 3 case at
+//! The iteration-floor benchmark: for the Hertz benchmark case and the paper's Fig. 3 case at
 //! 256² to 2048² cells, the solve's time per iteration and per operator product (one
 //! DC-FFT convolution) on one thread, against the *minimal DC-FFT convolution*, and
 //! the speed-up of N threads over one.

@@ -1,4 +1,4 @@
-//! Issue 11, acceptance 6: every rheology preset over a box of parameters (C'/R from
+//! Every rheology preset over a box of parameters (C'/R from
 //! 1e-3 to 1e-1, V' tau from 1e-4 to 1e1, delta 0 to 1, p0' 1e-3 to 1e-2; sphere
 //! R = E2 = 1, Q' = 5e-6, sigmoid law, 64^2, automatic window) must converge or stop
 //! with a clear diagnosis. Prints the counts per preset and every failure's message.

@@ -1,4 +1,4 @@
-//! Scaling table for issue 2 acceptance 6: solve time (median of repeats) and peak
+//! Scaling table: solve time (median of repeats) and peak
 //! resident memory for 64..1024 cells a side, each size in a fresh process so that
 //! the peak belongs to that size alone, and the dense reference (the paper's method)
 //! at 32 and 64 cells a side for the ratio.

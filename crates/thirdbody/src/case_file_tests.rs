@@ -4,7 +4,7 @@
 
 use super::*;
 
-/// The paper's Fig. 3 case, as issue 2 gives it.
+/// The paper's Fig. 3 case, as the case file states it.
 const FIG3: &str = r#"
 [slider]
 shape = "sphere"
@@ -123,7 +123,7 @@ fn paper_fig3_parses_into_the_hand_built_case() {
 
 #[test]
 fn shipped_examples_parse() {
-    // examples/paper_fig3.toml is issue 2's text exactly.
+    // examples/paper_fig3.toml is this text exactly.
     let fig3 = include_str!("../../../examples/paper_fig3.toml");
     assert_eq!(fig3.trim(), FIG3.trim());
     let hertz = parse(include_str!("../../../examples/hertz.toml")).unwrap();
@@ -317,7 +317,7 @@ fn wrong_type_and_bad_syntax_are_one_line_parse_errors() {
     error_naming(&with(FIG3, "law", "law = \"cubic\""), &["cubic", "sigmoid"]);
     error_naming(&with(FIG3, "poisson", "poisson = "), &["line 8"]);
     error_naming(&with(FIG3, "cells", "cells = [128]"), &["line 23"]);
-    // A third element is not dropped silently (issue 14).
+    // A third element is not dropped silently.
     error_naming(
         &with(FIG3, "cells", "cells = [128, 128, 128]"),
         &["grid.cells", "3 values given", "exactly two"],

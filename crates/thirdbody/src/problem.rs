@@ -3,9 +3,9 @@
 //! body's influence operator `K` (a DC-FFT convolution with the body's kernel
 //! spectrum), the layer's response `w3(p)` (any rheology, through
 //! [`LayerResponse`]), the slider's height f and slope df/dx at the cell centres, and
-//! the load Q. The conditions it poses are design's eq. 3-4 and the paper's system
-//! (6): `K p + w3(p) + f - D = 0` where p > 0, the gap >= 0 where p = 0, and
-//! `sum(p) h^2 = Q`. The solvers hold only their iteration state; nothing in them
+//! the load Q. The conditions it poses are the paper's eq. 3-4 and system (6) as
+//! docs/architecture.md (conventions) states them: `K p + w3(p) + f - D = 0` where
+//! p > 0, the gap >= 0 where p = 0, and `sum(p) h^2 = Q`. The solvers hold only their iteration state; nothing in them
 //! knows which body or rheology the problem came from.
 
 use std::sync::Arc;

@@ -1,4 +1,4 @@
-//! Issue 3, acceptance 7: on a stiff coating (E1/E2 = 3) the hysteresis friction
+//! On a stiff coating (E1/E2 = 3) the hysteresis friction
 //! grows with the coating's thickness (paper Fig. 7: Q' = 5e-6, V' = 1e-3,
 //! nu1 = nu2 = 0.3, C' = 0.02, delta = 0.5; linear and p0' = 0.005): a thicker stiff
 //! coating makes the body stiffer, so the layer's creep carries more of the contact.

@@ -1,4 +1,4 @@
-//! Hertz-like contact of a rigid sphere on a coated body (issue 3, acceptance 5):
+//! Hertz-like contact of a rigid sphere on a coated body:
 //! a coating much thinner than the contact radius gives the substrate's Hertz
 //! solution, a coating much thicker gives the coating's, within 1 % (Hertz;
 //! Johnson, Contact Mechanics, eq. 4.22-4.23: `a = (3 Q R / (4 E*))^(1/3)`,

@@ -1,4 +1,4 @@
-//! Validation of the coated-body influence kernel (issue 3): equal materials give
+//! Validation of the coated-body influence kernel: equal materials give
 //! the homogeneous closed form, thin and thick coatings tend to the substrate and
 //! the coating, an independent quadrature of the Fourier integral (paper eq. 10)
 //! agrees, Burmister's two-layer deflection factor is reproduced, bad input is

@@ -1,4 +1,4 @@
-//! Subsurface stresses in a coated half-space (issue 4, acceptance 2 and 3), against
+//! Subsurface stresses in a coated half-space, against
 //! independent references: the homogeneous body's Love kernels (E1 = E2), a direct
 //! polar quadrature of the Fourier integral of one cell's stresses, and continuity
 //! of tractions and in-plane strains across the interface.

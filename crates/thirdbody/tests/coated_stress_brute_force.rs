@@ -1,5 +1,5 @@
-//! Stiff-coating stress sections against a brute-force Fourier quadrature (issue 9
-//! part 1, acceptance 2): sphere R = 1, E2 = 1, nu = 0.3 everywhere, Q' = 5e-6, no
+//! Stiff-coating stress sections against a brute-force Fourier quadrature:
+//! sphere R = 1, E2 = 1, nu = 0.3 everywhere, Q' = 5e-6, no
 //! layer, coating E1/E2 = 30 of thickness h1 = 0.002, the automatic 128 x 128 window.
 //!
 //! Second method: the stresses of the solved pressure are `(1 / 4 pi^2) int T(k)

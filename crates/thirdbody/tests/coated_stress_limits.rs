@@ -1,4 +1,4 @@
-//! Issue 14: the coated body's stress kernels of coatings much thinner than a cell
+//! The coated body's stress kernels of coatings much thinner than a cell
 //! (the thin film: Love's kernels and the two carriers, without the remainder) and
 //! much thicker than the window (the coating's half-space plus a constant), against
 //! the full expansion on both sides of each switch, and against the independent

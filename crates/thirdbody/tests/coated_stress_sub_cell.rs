@@ -1,4 +1,4 @@
-//! Issue 14: the coated body's stress kernels of coatings thinner than a cell by the
+//! The coated body's stress kernels of coatings thinner than a cell by the
 //! sub-cell split (`StressMethod::SubCell`) against the full expansion
 //! (`StressMethod::Full`, whose cost grows like `(cell / h1)^2`) where the latter is
 //! still affordable, and against the thin film at its switch.

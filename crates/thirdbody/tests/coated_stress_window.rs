@@ -1,4 +1,4 @@
-//! Coated-body stress kernels for stiff coatings (issue 9 part 1): an independent
+//! Coated-body stress kernels for stiff coatings: an independent
 //! derivation of the plane-strain transfer functions (Airy stress function instead of
 //! the crate's Papkovich–Neuber potentials), and the window independence of one
 //! loaded cell's stress influence coefficients.
@@ -184,7 +184,7 @@ fn kernels(k: &CoatedStressKernels, z: f64, n: usize) -> InfluenceTable {
     t
 }
 
-/// Acceptance of issue 9 part 1: an exact influence coefficient cannot depend on the
+/// An exact influence coefficient cannot depend on the
 /// window. Lattices of 65, 129 and 257 offsets at the same cell side, contact radius
 /// a = 16 cells, h1 from a/10 to 2a, E1/E2 from 1/10 to 100; the differences on the
 /// common offsets must stay below 1e-9 of the largest coefficient at that depth.

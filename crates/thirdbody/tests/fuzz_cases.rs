@@ -1,4 +1,4 @@
-//! A fuzzer in the tree (issue 14): mutated bundled case files go through the parser
+//! A fuzzer in the tree: mutated bundled case files go through the parser
 //! and, when they parse, a small-grid solve. Whatever the input, the outcome is a
 //! parse or input error, a solver error, or a solution whose summary is finite: never
 //! a panic, never a non-finite result. `PROPTEST_CASES` sets the budget (256 in the
@@ -118,7 +118,7 @@ proptest! {
         let solved = solve(&file.case, &params);
         let seconds = start.elapsed().as_secs_f64();
         if seconds > 5.0 {
-            // Slow inputs are findings too (issue 14: nothing may run past 60 s).
+            // Slow inputs are findings too (nothing may run past 60 s).
             eprintln!("fuzz: slow case ({seconds:.1} s):\n{text}\n---");
         }
         count(if solved.is_ok() { 2 } else { 1 });

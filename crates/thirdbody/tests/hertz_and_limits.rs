@@ -1,4 +1,4 @@
-//! Issue 2, acceptance 1 and 4: the layer-free sphere against Hertz's closed form
+//! The layer-free sphere against Hertz's closed form
 //! (Johnson, Contact Mechanics, eq. 4.22-4.23), and the limits of the layer model.
 
 mod cases;

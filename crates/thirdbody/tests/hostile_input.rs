@@ -1,4 +1,4 @@
-//! Hostile and extreme input reaching the library (issue 14): each ends at once with
+//! Hostile and extreme input reaching the library: each ends at once with
 //! an error naming the key or the cause, never a panic, a hang or a non-finite result.
 
 mod cases;
@@ -33,7 +33,7 @@ fn a_tolerance_below_double_precision_is_refused() {
 
 #[test]
 fn a_fixed_window_away_from_the_contact_is_the_window_error_at_once() {
-    // The issue's case: the contact (Hertz radius 0.017 at the origin) lies wholly
+    // The reported case: the contact (Hertz radius 0.017 at the origin) lies wholly
     // outside a window of half width 0.06 centred at x = 1.
     let case = hertz(32, Some([0.06, 0.06]), Some([1.0, 0.0]));
     let e = solve(&case, &SolverParams::default()).unwrap_err();
@@ -128,7 +128,7 @@ fn extreme_values_are_named_in_their_own_format() {
 
 #[test]
 fn results_outside_the_model_carry_warnings() {
-    // V' = 1e-30 (the issue's case): mu ~ 3e7 and a contact 5e7 R long. The report
+    // V' = 1e-30 (a reported case): mu ~ 3e7 and a contact 5e7 R long. The report
     // says so; the paper's Fig. 3 case, inside the model, has no warning.
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/paper_fig3.toml"),
@@ -158,7 +158,7 @@ fn results_outside_the_model_carry_warnings() {
     );
 }
 
-/// The fold diagnosis gives advice that fits the law (issue 14): a sigmoid law is
+/// The fold diagnosis gives advice that fits the law: a sigmoid law is
 /// told the largest delta that cannot fold, a table is not told of delta and p0, and
 /// neither is sent to refine the grid (the fold then moves to higher pressures).
 #[test]
@@ -206,7 +206,7 @@ fn the_fold_diagnosis_fits_the_law() {
     assert!(e.contains("table") && !e.contains("p0"), "{e}");
 }
 
-/// A coating far thicker than the window is the coating's half-space (issue 14: at
+/// A coating far thicker than the window is the coating's half-space (at
 /// 1e15 the old expansion gave the uncoated answer): Fig. 7's case on a fixed 64²
 /// window with h1 = 1e15 and 1e100 equals the homogeneous E1 body to 1e-9.
 #[test]
@@ -248,7 +248,7 @@ fn a_coating_far_thicker_than_the_window_is_the_coating_half_space() {
     }
 }
 
-/// Q' = 1e6 on the paper's Fig. 3 layer at 128² (the issue: "D = 3.2e4 R", solved
+/// Q' = 1e6 on the paper's Fig. 3 layer at 128² (once reported as "D = 3.2e4 R", solved
 /// without a word; later a stagnated Newton solve blamed on ill-conditioning): the
 /// contact would be ~90 R wide, and the failure says that, as an input error naming
 /// the load. (On 32² the same case converges and carries the model's warnings.) Hertz at the same load still solves, with the model's warnings.

@@ -1,4 +1,4 @@
-//! The library keeps no state between calls (issue 10; style: the caller owns what
+//! The library keeps no state between calls (style: the caller owns what
 //! is costly to build). No `static` item of any kind (`static`, `static mut`,
 //! `thread_local!`, lazily initialised cells) may appear in `src/`: constants are
 //! `const`, caches are values such as `KernelCache` that the caller creates.

@@ -1,4 +1,4 @@
-//! Issue 2: the solver converges for every case in the paper's ranges (docs/architecture.md (numerics):
+//! The solver converges for every case in the paper's ranges (docs/architecture.md (numerics):
 //! V' from 1e-4 to 1e-1, delta 0..1, p0' 0.001..0.05, C' up to 1), tried at the
 //! corners of that box for both integrations and the paper's two loads.
 //!

@@ -1,4 +1,4 @@
-//! Layer rheologies beyond Maxwell (issue 11): the energy balance of steady sliding
+//! Layer rheologies beyond Maxwell: the energy balance of steady sliding
 //! for every preset, the fast- and slow-sliding limits, the Zener friction peak,
 //! presets that must coincide, and the dense reference on 24 x 24.
 

@@ -1,6 +1,5 @@
-//! Rigid-base limit of the layer contact (issue 2, acceptance 2 and the second half
-//! of 3): the solver on a very stiff body against the semi-analytic per-row
-//! solution of `tests/common/rigid_base.rs`, and checks of that oracle itself.
+//! Rigid-base limit of the layer contact: the solver on a very stiff body against
+//! the semi-analytic per-row solution of `tests/common/rigid_base.rs`, and checks of that oracle itself.
 
 mod common;
 

@@ -1,4 +1,4 @@
-//! Issue 2, acceptance 3 (first half): the DC-FFT + Newton/CG solver and the dense
+//! The DC-FFT + Newton/CG solver and the dense
 //! direct reference (the paper's system 6 with LU and an active-set loop) give the
 //! same discrete solution on a 24 x 24 grid.
 

@@ -1,4 +1,4 @@
-//! Very stiff coatings (issue 9 part 3): Polonsky–Keer conjugate gradients broke down
+//! Very stiff coatings: Polonsky–Keer conjugate gradients broke down
 //! on E1/E2 = 80-100 with h1 = 0.002 (the projected curvature of a conjugate
 //! direction turned negative) and blamed `max_iterations`. Every coating ratio from
 //! 10 to 1000, on thin (h1 = 0.002, ~0.1 a) and thicker (h1 = 0.02) coatings, must

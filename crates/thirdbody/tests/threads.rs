@@ -1,4 +1,4 @@
-//! Issue 13: one solve split over threads gives the same bits as on one thread
+//! One solve split over threads gives the same bits as on one thread
 //! (fixed chunking of every reduction, `crate::passes`, and FFT rows and columns that
 //! do not depend on who computes them), for the DC-FFT itself, conjugate gradients
 //! (a bare body) and semi-smooth Newton (the paper's layer), on grids large enough

@@ -1,12 +1,12 @@
-//! Units that cannot break the solver (issue 14): one dimensionless problem written in
+//! Units that cannot break the solver: one dimensionless problem written in
 //! any consistent units gives the same dimensionless answer. The bundled examples and
 //! one case of every rheology, law, body and slider are rescaled by random factors of
 //! length (1e-6..1e6), modulus (1e-6..1e12) and time (1e-6..1e6); every result must
 //! scale by its dimension to 1e-9. The expected values are the unscaled case's
 //! results times the factors, so the test fails whenever a quantity is converted
 //! with the wrong dimension (in the library or here: the rescaled case would then be
-//! another physical problem). The issue's own case, R and E scaled by 1e-100 and
-//! 1e100, is solved too.
+//! another physical problem). The case that once broke the solver, R and E scaled by
+//! 1e-100 and 1e100, is solved too.
 
 use std::sync::OnceLock;
 
@@ -567,7 +567,7 @@ fn every_case_of_the_test_is_drawn() {
     assert_eq!(references().len(), 15);
 }
 
-/// The issue's case: Hertz with R and E2 written as 1e-100 (load 5e-306) failed with
+/// The case that once broke the solver: Hertz with R and E2 written as 1e-100 (load 5e-306) failed with
 /// "grid = 0"; it is the paper's Hertz case. So is the case in 1e50 units. In 1e100
 /// units the moment's unit, E R^3 = 1e400, is beyond double precision: that is said,
 /// naming the result, instead of writing an infinite moment.

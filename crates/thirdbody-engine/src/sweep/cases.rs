@@ -215,7 +215,7 @@ impl Sweep {
     }
 
     /// Refuses the cases `mine` says are this run's when the largest of them, solved
-    /// by `workers` at once, would not fit in `available` bytes (issue 14).
+    /// by `workers` at once, would not fit in `available` bytes.
     pub fn check_memory(
         &self,
         mine: impl Fn(usize) -> bool,

@@ -273,7 +273,7 @@ pub fn coated_surface_compliance(
 /// [`thick_coating_kernel`]), whose error falls as (diagonal / h1)^3 (5e-13 here). The
 /// full expansion loses digits in that range instead (2.7e-10 of the kernel at 1e-4,
 /// 1.2e-8 at 2e-6; mu off by 4e-3 at h1 = 1e14 on a 0.1 window and the uncoated
-/// answer beyond: issue 14).
+/// answer beyond).
 const THICK_COATING_S: f64 = 1e-4;
 
 /// The surface kernel of a coating much thicker than the window: Love's kernel of the

@@ -346,7 +346,7 @@ pub fn solve_observed(
 /// Solves a case, taking plans and kernel spectra from the caller's `kernels` (and
 /// keeping new ones there), reporting progress to `observer`. The window is the
 /// case's fixed one, or chosen automatically and enlarged or refitted until the
-/// contact fits (design's section 2). The solve runs in the paper's variables
+/// contact fits (docs/architecture.md (numerics)). The solve runs in the paper's variables
 /// (R = E2 = T = 1, rounded to powers of two); the solution, the errors and the windows reported to
 /// `observer` are in the case's units.
 pub fn solve_with(
@@ -612,7 +612,7 @@ mod tests {
     #[test]
     fn a_creeping_residual_is_stagnation_and_a_falling_one_is_not() {
         let mut seen = 0;
-        // -0.1% per iteration (the runaway Newton solve): stagnated.
+        // -0.1% per iteration (a runaway Newton solve once seen): stagnated.
         let creeping: Vec<f64> = (0..60).map(|k| 0.4 * 0.999f64.powi(k)).collect();
         assert!(monitor_after(&creeping, &mut |_| {
             seen += 1;

@@ -52,7 +52,7 @@
 //!    evaluates the transfer at about `16 (k_hi h L)^2 / pi` wavenumbers on a box of
 //!    L cells, `L ~ REACH / (k_lo h)`, some 2e5 per band.
 //!
-//! Why the split (issue 9 part 1). A lattice sum is the kernel plus its periodic
+//! Why the split. A lattice sum is the kernel plus its periodic
 //! images. The remainder's wave-frame functions are analytic in |k|, so in (kx, ky)
 //! its non-analytic terms (`|k|^3, |k|^5, ...` in the normal stresses, `|k|^2, ...`
 //! in the shears) give real-space tails `r^-5` and `r^-4`; worse, for a stiff

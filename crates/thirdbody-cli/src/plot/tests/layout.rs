@@ -1,4 +1,4 @@
-//! Layout of every plot kind the CLI writes (issue 15): rendered to SVG through the
+//! Layout of every plot kind the CLI writes: rendered to SVG through the
 //! public functions, the SVG read back, and each text's box measured with the embedded
 //! font and placed as plotters' bitmap backend places it (anchor, rotation). Checked: no
 //! two texts overlap, every text lies on the canvas, and the legend box of a line plot
