@@ -81,7 +81,7 @@ impl ContactProblem {
     /// A problem from its parts, for driving the solvers with other operators (a
     /// dense matrix in tests). `shape` and `slope` are f and df/dx per cell. An
     /// operator, `shape` or `slope` whose size is not the grid's number of cells is an
-    /// [`Error::InvalidValue`](crate::Error::InvalidValue) naming the argument.
+    /// [`Error::InvalidValue`] naming the argument.
     pub fn from_parts(
         case: &Case,
         grid: &Grid,
