@@ -54,14 +54,6 @@ impl Body {
         }
     }
 
-    /// The material at the surface.
-    pub fn surface_material(&self) -> Elastic {
-        match *self {
-            Body::Homogeneous(m) => m,
-            Body::Coated { coating, .. } => coating,
-        }
-    }
-
     pub(crate) fn validate(&self) -> Result<()> {
         match self {
             Body::Homogeneous(m) => m.validate("substrate"),

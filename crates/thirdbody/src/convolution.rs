@@ -204,9 +204,9 @@ impl ConvolutionPlan {
     }
 
     /// Plans the DC-FFT for fields of `nx x ny` cells on a `px x py` wrap-around
-    /// grid (even sizes, `n <= p <= 2n`): exact for fields whose support the padding
-    /// [`holds`](Self::holds), with even kernels only.
-    pub fn padded(
+    /// grid (even sizes, `n <= p <= 2n`, which the callers' paddings are): exact for
+    /// fields whose support the padding [`holds`](Self::holds), with even kernels only.
+    pub(crate) fn padded(
         nx: usize,
         ny: usize,
         [px, py]: [usize; 2],
@@ -389,7 +389,7 @@ impl ConvolutionPlan {
     }
 
     /// An even kernel given by its quadrant only (as [`Self::even_kernel_spectrum`]
-    /// takes it): nothing is transformed until [`Self::respectrum`] builds its
+    /// takes it): nothing is transformed until a product builds its
     /// spectrum on a padding (the same bits as building it at once). A contact
     /// operator whose products are all on a trimmed padding never needs the full
     /// one.
@@ -413,8 +413,8 @@ impl ConvolutionPlan {
     }
 
     /// The spectrum on this plan's padding of the even kernel that `kernel` was
-    /// built from (on a plan of the same grid).
-    pub fn respectrum(self: &Arc<Self>, kernel: &KernelSpectrum) -> KernelSpectrum {
+    /// built from (on a plan of the same grid, the callers' invariant).
+    pub(crate) fn respectrum(self: &Arc<Self>, kernel: &KernelSpectrum) -> KernelSpectrum {
         assert!(
             kernel.nx == self.nx && kernel.ny == self.ny,
             "kernel of another grid"

@@ -100,11 +100,6 @@ impl Grid {
             || row(ny - 1)
             || (0..ny).any(|j| field[j * nx] > 0.0 || field[j * nx + nx - 1] > 0.0)
     }
-
-    /// Same grid geometry test with a tolerance (used to share kernels).
-    pub fn same_cells(&self, other: &Grid) -> bool {
-        self.nx == other.nx && self.ny == other.ny && self.cell == other.cell
-    }
 }
 
 #[cfg(test)]

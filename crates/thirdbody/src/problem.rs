@@ -13,7 +13,7 @@ use std::sync::Arc;
 use crate::case::{Body, Case};
 use crate::contact::window::ContactEstimate;
 use crate::convolution::Parallelism;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::kernel_cache::KernelCache;
 use crate::layer::LayerResponse;
@@ -79,15 +79,28 @@ impl Case {
 
 impl ContactProblem {
     /// A problem from its parts, for driving the solvers with other operators (a
-    /// dense matrix in tests). `shape` and `slope` are f and df/dx per cell.
+    /// dense matrix in tests). `shape` and `slope` are f and df/dx per cell. An
+    /// operator, `shape` or `slope` whose size is not the grid's number of cells is an
+    /// [`Error::InvalidValue`] naming the argument.
     pub fn from_parts(
         case: &Case,
         grid: &Grid,
         influence: Box<dyn InfluenceOperator + Send>,
         shape: Vec<f64>,
         slope: Vec<f64>,
-    ) -> Self {
-        ContactProblem {
+    ) -> Result<Self> {
+        let cells = grid.len();
+        for (name, len) in [
+            ("influence operator size", influence.len()),
+            ("shape length", shape.len()),
+            ("slope length", slope.len()),
+        ] {
+            if len != cells {
+                let allowed = format!("the grid's {} x {} = {cells} cells", grid.nx, grid.ny);
+                return Err(Error::invalid(name, len, &allowed));
+            }
+        }
+        Ok(ContactProblem {
             grid: *grid,
             body: case.body,
             influence,
@@ -99,7 +112,7 @@ impl ContactProblem {
             slope,
             load: case.loading.normal_load,
             estimate: ContactEstimate::of(case),
-        }
+        })
     }
 
     /// The window and cells.
@@ -128,6 +141,53 @@ impl ContactProblem {
         match &self.layer {
             None => Some(0.0),
             Some(l) => l.winkler_compliance(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case_file::parse_case_file;
+    use crate::operator::DenseOperator;
+
+    #[test]
+    fn parts_of_the_wrong_size_are_an_input_error_naming_the_argument() {
+        let text = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
+                    poisson = 0.3\n[loading]\nnormal_load = 5e-6\n[grid]\ncells = [8, 8]\n";
+        let mut no_maps =
+            |_: &str, _: f64| -> Result<crate::HeightMap> { unreachable!("no height map") };
+        let case = parse_case_file(text, &mut no_maps).unwrap().case;
+        let grid = Grid::centred(8, 8, 0.01, [0.0, 0.0]).unwrap();
+        let parts = |n_operator: usize, n_shape: usize, n_slope: usize| {
+            ContactProblem::from_parts(
+                &case,
+                &grid,
+                Box::new(DenseOperator::from_fn(n_operator, |i, j| {
+                    f64::from(u8::from(i == j))
+                })),
+                vec![0.0; n_shape],
+                vec![0.0; n_slope],
+            )
+        };
+        assert!(parts(64, 64, 64).is_ok());
+        for (sizes, message) in [
+            (
+                (63, 64, 64),
+                "influence operator size = 63 is not allowed: the grid's 8 x 8 = 64 cells",
+            ),
+            (
+                (64, 65, 64),
+                "shape length = 65 is not allowed: the grid's 8 x 8 = 64 cells",
+            ),
+            (
+                (64, 64, 0),
+                "slope length = 0 is not allowed: the grid's 8 x 8 = 64 cells",
+            ),
+        ] {
+            let e = parts(sizes.0, sizes.1, sizes.2).unwrap_err();
+            assert!(e.is_input());
+            assert_eq!(e.to_string(), message);
         }
     }
 }

@@ -65,7 +65,8 @@ fn solve_on(case: &Case, grid: &Grid, allow_sparse: bool) -> (Solution, usize) {
         sparse_sums: Arc::clone(&sparse_sums),
     };
     let mut problem =
-        ContactProblem::from_parts(case, grid, Box::new(watched), shape, vec![0.0; grid.len()]);
+        ContactProblem::from_parts(case, grid, Box::new(watched), shape, vec![0.0; grid.len()])
+            .unwrap();
     let solution = solve_problem(&mut problem, None, &params, &mut |_| {
         ControlFlow::Continue(())
     })

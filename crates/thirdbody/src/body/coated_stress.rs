@@ -301,27 +301,27 @@ pub fn plane_stress_transfer(
     }
 }
 
-/// Surface normal displacement per unit pressure from the same solution,
-/// `w^ / p^` (equals [`super::coated::coated_surface_compliance`]).
-pub fn surface_compliance_from_potentials(
-    coating: Elastic,
-    thickness: f64,
-    substrate: Elastic,
-    k: f64,
-) -> f64 {
-    let t = k * thickness;
-    let x = potential_coefficients(coating, substrate, t);
-    let q = quantities(coating, 0.0, &coating_basis(0.0, t));
-    let w: f64 = q[1].iter().zip(&x[..4]).map(|(a, b)| a * b).sum();
-    let mu1 = coating.young / (2.0 * (1.0 + coating.poisson));
-    // 2 mu w = k (p / k^2) * sum.
-    w / (2.0 * mu1 * k)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::body::coated::coated_surface_compliance;
+
+    /// Surface normal displacement per unit pressure from the same solution,
+    /// `w^ / p^`: the oracle of `coated_surface_compliance`.
+    fn surface_compliance_from_potentials(
+        coating: Elastic,
+        thickness: f64,
+        substrate: Elastic,
+        k: f64,
+    ) -> f64 {
+        let t = k * thickness;
+        let x = potential_coefficients(coating, substrate, t);
+        let q = quantities(coating, 0.0, &coating_basis(0.0, t));
+        let w: f64 = q[1].iter().zip(&x[..4]).map(|(a, b)| a * b).sum();
+        let mu1 = coating.young / (2.0 * (1.0 + coating.poisson));
+        // 2 mu w = k (p / k^2) * sum.
+        w / (2.0 * mu1 * k)
+    }
 
     fn elastic(young: f64, poisson: f64) -> Elastic {
         Elastic { young, poisson }

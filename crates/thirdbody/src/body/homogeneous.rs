@@ -67,17 +67,12 @@ pub fn love_rectangle_displacement(material: Elastic, a: f64, b: f64, x: f64, y:
         * rectangle_inverse_distance_integral(x, y, a, b)
 }
 
-/// Influence coefficient between cells `(di, dj)` apart on a grid of square cells of
-/// side `cell`: displacement at a cell centre per unit pressure on the other cell.
-pub fn homogeneous_surface_kernel(material: Elastic, cell: f64) -> impl Fn(i64, i64) -> f64 + Sync {
-    let a = 0.5 * cell;
-    move |di, dj| love_rectangle_displacement(material, a, a, di as f64 * cell, dj as f64 * cell)
-}
-
-/// The kernel of [`homogeneous_surface_kernel`] on one quadrant of offsets,
-/// `[dj * nx + di]` for `0 <= di < nx`, `0 <= dj < ny` (it is even in both). The
-/// primitive F is evaluated once per cell corner of the lattice and shared by the
-/// four cells that meet there, a quarter of the work of cell-by-cell evaluation.
+/// The influence coefficients between cells `(di, dj)` apart on a grid of square
+/// cells of side `cell` (displacement at a cell centre per unit pressure on the other
+/// cell) on one quadrant of offsets, `[dj * nx + di]` for `0 <= di < nx`,
+/// `0 <= dj < ny` (they are even in both). The primitive F is evaluated once per
+/// cell corner of the lattice and shared by the four cells that meet there, a quarter
+/// of the work of cell-by-cell evaluation.
 pub fn homogeneous_surface_kernel_quadrant(
     material: Elastic,
     cell: f64,
@@ -112,6 +107,15 @@ pub fn homogeneous_surface_kernel_quadrant(
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    /// The influence coefficient between cells `(di, dj)` apart, cell by cell: the
+    /// quadrant table's oracle.
+    fn homogeneous_surface_kernel(material: Elastic, cell: f64) -> impl Fn(i64, i64) -> f64 {
+        let a = 0.5 * cell;
+        move |di, dj| {
+            love_rectangle_displacement(material, a, a, di as f64 * cell, dj as f64 * cell)
+        }
+    }
 
     const STEEL: Elastic = Elastic {
         young: 2.0,
