@@ -309,12 +309,13 @@ print("finished", flush=True)
 
 
 def test_ctrl_c_stops_a_solves_stress_section():
-    # The Fig. 3 solve takes a fraction of a second, its XZ section of 4096 depths
-    # (the most a [stress] section may ask) several seconds more.
+    # The Fig. 3 solve on 256 x 256 takes about a second, its XZ section of 4096
+    # depths (the most a [stress] section may ask) several seconds more on 2 cores
+    # (on 128 x 128 both ended within 1.5 s on a quiet machine, before the signal).
     script = f"""
 import thirdbody
 case = thirdbody.Case.from_file({str(ROOT / "examples" / "paper_fig3.toml")!r}).with_(
-    {{"stress.sections": ["xz"], "stress.depth_points": 4096}})
+    {{"grid.cells": [256, 256], "stress.sections": ["xz"], "stress.depth_points": 4096}})
 print("started", flush=True)
 thirdbody.solve(case)
 print("finished", flush=True)
