@@ -83,7 +83,9 @@ pub trait LayerResponse: std::fmt::Debug + Send + Sync {
 }
 
 /// The linearised layer `J = dw3/dp`, lower triangular along each row in the order
-/// of the material path (from the largest x).
+/// of the material path (from the largest x), up to entries the preconditioner may
+/// leave out (the creep form's branches reach one cell downstream through the
+/// slope of their forcing).
 pub trait LayerLinearisation {
     /// `out = J dp`.
     fn apply(&self, dp: &[f64], out: &mut [f64]);

@@ -485,8 +485,11 @@ impl ViscoelasticRows {
 }
 
 /// The layer's Jacobian `dw3/dp`: lower triangular in each row in the order of
-/// the material path (from largest x). `J_ii = diagonal_i`; for j upstream of i,
-/// `J_ij = flow_slope_j + sum_k (C_k / C[0]) dF/dp_j (1 - a_k) a_k^(j-i-1) b_k`.
+/// the material path (from largest x) but for one entry per cell, the branches'
+/// slope reaching to the downstream neighbour (`J_i,i-1`). `J_ii = diagonal_i`;
+/// for j upstream of i it holds the flow's `flow_slope_j` and each branch's
+/// `(C_k / C[0]) dF/dp_j (1 - a_k) a_k^(j-i-1) b_k`, plus the slope's terms
+/// through the exit values (module docs).
 #[derive(Debug, Clone)]
 pub struct ViscoelasticJacobian {
     nx: usize,
