@@ -196,7 +196,7 @@ pub fn request_in_parts(
     request: &StressRequest,
     stop: &AtomicBool,
 ) -> Option<thirdbody::Result<StressResults>> {
-    let named = match request.sections(&solution.body, &solution.grid, &solution.pressure) {
+    let named = match request.sections(&solution.body, &solution.grid, &solution.mean_pressure()) {
         Ok(named) => named,
         Err(e) => return Some(Err(e)),
     };

@@ -12,6 +12,7 @@ use crate::convolution::{
     add_sparse_even_convolution, needed_padding, quick_padding, ConvolutionPlan, Convolver,
     KernelSpectrum, Support,
 };
+use crate::layer::{cell_mean_pressure, ContactEdge};
 
 /// Something that applies the body's influence matrix.
 pub trait InfluenceOperator {
@@ -210,6 +211,46 @@ impl InfluenceOperator for DenseOperator {
             *wi += cells.iter().map(|&(k, v)| row[k] * v).sum::<f64>();
         }
         true
+    }
+}
+
+/// `K W`: an influence operator applied to each cell's mean pressure
+/// ([`crate::layer::cell_mean_pressure`]) instead of its centre value; `W` differs
+/// from the identity only at the contacts' entry cells a layer places.
+pub(crate) struct OnCellMeans<'a> {
+    inner: &'a mut dyn InfluenceOperator,
+    entries: &'a [ContactEdge],
+    means: Vec<f64>,
+}
+
+impl<'a> OnCellMeans<'a> {
+    /// `inner` applied to the mean pressures of `entries`.
+    pub(crate) fn new(inner: &'a mut dyn InfluenceOperator, entries: &'a [ContactEdge]) -> Self {
+        let n = inner.len();
+        OnCellMeans {
+            inner,
+            entries,
+            means: vec![0.0; n],
+        }
+    }
+}
+
+impl InfluenceOperator for OnCellMeans<'_> {
+    fn len(&self) -> usize {
+        self.inner.len()
+    }
+    fn self_coefficient(&self) -> f64 {
+        self.inner.self_coefficient()
+    }
+    fn apply(&mut self, p: &[f64], w: &mut [f64]) {
+        if self.entries.is_empty() {
+            return self.inner.apply(p, w);
+        }
+        cell_mean_pressure(self.entries, p, &mut self.means);
+        self.inner.apply(&self.means, w);
+    }
+    fn products(&self) -> usize {
+        self.inner.products()
     }
 }
 

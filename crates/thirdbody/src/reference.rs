@@ -24,7 +24,7 @@ use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::kernel_cache::KernelCache;
-use crate::layer::LayerResponse;
+use crate::layer::{load_weights, LayerResponse};
 use crate::problem::ContactProblem;
 use crate::solution::{Method, Solution, SolveInfo};
 
@@ -50,8 +50,32 @@ pub fn solve_dense(case: &Case, grid: &Grid, tolerance: f64) -> Result<Solution>
     solve_dense_problem(&problem, tolerance)
 }
 
+/// Most dense solves with the contacts' leading edges relocated (as the
+/// production solver does, [`LayerResponse::relocated`]).
+const MAX_RELOCATIONS: usize = 12;
+
 /// Solves an assembled problem on its window with the dense method.
 pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<Solution> {
+    let mut relocated: Option<Box<dyn LayerResponse>> = None;
+    let mut solves = 0;
+    loop {
+        let response = relocated.as_deref().or(problem.layer.as_deref());
+        let solution = solve_dense_with(problem, response, tolerance)?;
+        solves += 1;
+        let moved = response.and_then(|l| l.relocated(&solution.pressure, &solution.gap));
+        match moved {
+            Some(l) if solves <= MAX_RELOCATIONS => relocated = Some(l),
+            _ => return Ok(solution),
+        }
+    }
+}
+
+/// [`solve_dense_problem`] with the layer's response `response`.
+fn solve_dense_with(
+    problem: &ContactProblem,
+    response: Option<&dyn LayerResponse>,
+    tolerance: f64,
+) -> Result<Solution> {
     let grid = &problem.grid;
     let n = grid.len();
     let (nx, ny) = (grid.nx, grid.ny);
@@ -59,17 +83,28 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
         .body
         .model()
         .surface_kernel_quadrant(grid.cell, nx, ny)?;
-    let body = Mat::<f64>::from_fn(n, n, |a, b| {
+    let influence = Mat::<f64>::from_fn(n, n, |a, b| {
         let di = (a % nx).abs_diff(b % nx);
         let dj = (a / nx).abs_diff(b / nx);
         quadrant[dj * nx + di]
     });
+    // The body carries each cell's mean pressure: K W, column j being
+    // `K_j W_jj + sum over edges k with neighbour j of K_k b_k`.
+    let entries = response.map_or(Vec::new(), |l| l.contact_edges().to_vec());
+    let mut body = influence.clone();
+    for e in &entries {
+        let (a, b) = e.mean_weights();
+        for r in 0..n {
+            body[(r, e.cell)] += (a - 1.0) * influence[(r, e.cell)];
+            if let Some(d) = e.neighbour {
+                body[(r, d)] += b * influence[(r, e.cell)];
+            }
+        }
+    }
+    let weights = load_weights(&entries, n);
     let f = problem.shape.clone();
     let slope = problem.slope.clone();
-    let layer = problem
-        .layer
-        .as_deref()
-        .map(|response| DenseLayer { response });
+    let layer = response.map(|response| DenseLayer { response });
     let load = problem.load;
     let area = grid.cell_area();
 
@@ -86,6 +121,7 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
             &f,
             load,
             area,
+            &weights,
             &active,
             &mut p,
             &mut approach,
@@ -125,6 +161,7 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
                 grid: *grid,
                 body: problem.body,
                 pressure: p,
+                contact_edges: entries,
                 body_displacement: wb,
                 layer_displacement: wl,
                 compliance,
@@ -209,6 +246,7 @@ fn newton_on_set(
     f: &[f64],
     load: f64,
     area: f64,
+    weights: &[f64],
     active: &[bool],
     p: &mut [f64],
     approach: &mut f64,
@@ -224,7 +262,7 @@ fn newton_on_set(
     let mut previous = f64::INFINITY;
     for step in 0..100 {
         let gap = gap_of(body, layer, f, p, *approach);
-        let load_error = p.iter().sum::<f64>() * area - load;
+        let load_error = p.iter().zip(weights).map(|(p, w)| p * w).sum::<f64>() * area - load;
         let scale = f
             .iter()
             .fold(0.0f64, |a, v| a.max(v.abs()))
@@ -241,7 +279,7 @@ fn newton_on_set(
         let jac = Mat::<f64>::from_fn(m + 1, m + 1, |r, c| match (r < m, c < m) {
             (true, true) => body[(idx[r], idx[c])] + layer_jac.as_ref().map_or(0.0, |j| j[(r, c)]),
             (true, false) => -1.0,
-            (false, true) => area,
+            (false, true) => area * weights[idx[c]],
             (false, false) => 0.0,
         });
         let rhs = Col::<f64>::from_fn(m + 1, |r| if r < m { -gap[idx[r]] } else { -load_error });

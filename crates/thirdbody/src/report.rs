@@ -114,44 +114,7 @@ pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
     if let Some(message) = energy_balance_warning(case, &s) {
         out.push(message);
     }
-    if let Some(message) = leading_edge_jump_warning(case, &s) {
-        out.push(message);
-    }
     out
-}
-
-/// A layer whose retarded part dominates and has no glassy spring to speak of
-/// cannot deform at once: the pressure jumps where material enters the contact
-/// (to `V tau b / (R C)` for Kelvin–Voigt on a rigid base). The cell-centred
-/// pressure does not resolve a jump that falls inside a cell: the first cells
-/// behind it overshoot by up to 80 % of the jump (docs/validation.md, rigid base,
-/// Kelvin–Voigt). Said when some branch k holds at least the glassy compliance,
-/// the pressure's rise at the edge, over `V tau_k C_g / (C_g + C_k)`, is shorter
-/// than a cell, and the jump is more than a fortieth of the contact's pressure
-/// scale (the creep length above a cell and above 1/80 of the contact's
-/// half-length).
-fn leading_edge_jump_warning(case: &Case, s: &Summary) -> Option<String> {
-    let layer = case.layer.as_ref()?;
-    let speed = case.loading.velocity.unwrap_or(f64::INFINITY);
-    if !speed.is_finite() {
-        return None;
-    }
-    let form = layer.rheology.creep_form();
-    let half_length = 0.5 * (s.contact_x_max - s.contact_x_min);
-    let jumps = form.branches.iter().any(|b| {
-        let creep_length = speed * b.time;
-        b.compliance >= form.glassy
-            && creep_length * form.glassy / (form.glassy + b.compliance) < s.cell_size
-            && creep_length > s.cell_size.max(half_length / 80.0)
-    });
-    jumps.then(|| {
-        "the layer has no glassy compliance to speak of, so the pressure jumps where \
-         material enters the contact; the cells just behind a jump that falls inside \
-         a cell overshoot it by up to 80 %: max_pressure and its position are not \
-         reliable here (the friction, the approach, the load and the contact's extent \
-         are)"
-            .to_string()
-    })
 }
 
 /// The energy-balance check of steady sliding: `mu Q V` must equal the power

@@ -7,8 +7,11 @@
 
 use serde::Serialize;
 
+use std::borrow::Cow;
+
 use crate::case::Body;
 use crate::grid::Grid;
+use crate::layer::{cell_mean_pressure, ContactEdge};
 
 /// Which algorithm produced a solution.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -49,8 +52,13 @@ pub struct Solution {
     pub grid: Grid,
     /// The body it was solved on (its stresses are computed on it).
     pub body: Body,
-    /// Contact pressure per cell, >= 0.
+    /// Contact pressure per cell, >= 0: at the cell's centre.
     pub pressure: Vec<f64>,
+    /// The contacts' leading edges the layer located inside their cells (empty for
+    /// most layers): there a cell's mean pressure, which the load, the friction and
+    /// the stresses integrate, differs from its centre value
+    /// ([`Solution::mean_pressure`]).
+    pub contact_edges: Vec<ContactEdge>,
     /// Normal displacement of the elastic body's surface.
     pub body_displacement: Vec<f64>,
     /// Normal displacement of the layer `w3` (`None` without a layer).
@@ -156,10 +164,23 @@ impl Summary {
 }
 
 impl Solution {
+    /// The pressure each cell carries on average: [`Solution::pressure`] but at the
+    /// contacts' entry cells ([`crate::layer::ContactEdge`]).
+    pub fn mean_pressure(&self) -> Cow<'_, [f64]> {
+        if self.contact_edges.is_empty() {
+            Cow::Borrowed(&self.pressure)
+        } else {
+            let mut mean = vec![0.0; self.pressure.len()];
+            cell_mean_pressure(&self.contact_edges, &self.pressure, &mut mean);
+            Cow::Owned(mean)
+        }
+    }
+
     /// The scalar results.
     pub fn summary(&self) -> Summary {
         let g = &self.grid;
         let area = g.cell_area();
+        let mean = self.mean_pressure();
         let (mut pmax, mut kmax) = (0.0, 0);
         let (mut xmin, mut xmax, mut ymin, mut ymax) = (
             f64::INFINITY,
@@ -183,8 +204,8 @@ impl Solution {
                     xmax = xmax.max(x + 0.5 * g.cell);
                     ymin = ymin.min(y - 0.5 * g.cell);
                     ymax = ymax.max(y + 0.5 * g.cell);
-                    moment += x * p * area;
-                    traction += self.shape_slope[k] * p * area;
+                    moment += x * mean[k] * area;
+                    traction += self.shape_slope[k] * mean[k] * area;
                 }
             }
         }

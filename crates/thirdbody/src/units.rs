@@ -236,6 +236,7 @@ impl Scales {
             grid: self.unscaled_grid(&s.grid),
             body,
             pressure: s.pressure.into_iter().map(|p| p * self.modulus).collect(),
+            contact_edges: s.contact_edges,
             body_displacement: lengths(s.body_displacement),
             layer_displacement: s.layer_displacement.map(lengths),
             compliance: s.compliance.map(compliances),

@@ -146,31 +146,82 @@ fn kelvin_voigt_layer_with_interior_maximum_matches_the_row_solution_to_1e_3() {
 #[test]
 fn kelvin_voigt_layer_with_leading_edge_jump_matches_the_row_solution() {
     // K2: L = 1.3 b0, so the largest pressure is the jump p(b) = L b / (R C) at the
-    // leading edge, which cuts through cells: a cell's pressure there depends on
-    // where the edge falls in it (up to about 1.8 times the jump on some rows), so
-    // the reported max_pressure is wrong, and the report says so. mu, D and both
-    // edges converge; the centre row, whose edge falls near a cell edge, stays
-    // within 10% of the jump.
+    // leading edge, which cuts through cells. The layer locates each row's edge
+    // inside its cell and integrates the branch from there: mu, D and the edges to
+    // 1e-3, max_pressure to 5e-3 (the largest cell-centre value lies up to a cell
+    // behind the edge, where the pressure has fallen by the row solution's slope
+    // times that distance), and nothing to warn of.
     let (q, v) = (2e-5, 0.03);
     let r = kelvin_voigt(R, q, 0.02, 1.0, v);
+    let e = check("K2", kelvin_voigt_layer(0.02), q, v, &r, 128, &[1, 2, 3, 4]);
+    assert!(e[0].abs() < 5e-3, "K2 p_max {:+.2e}", e[0]);
     let c = case(kelvin_voigt_layer(0.02), q, v, [128, 128], &r);
-    check("K2", kelvin_voigt_layer(0.02), q, v, &r, 128, &[1, 2, 3, 4]);
     let s = solve(&c, &SolverParams::default()).unwrap();
-    let g = &s.grid;
-    let j = g.ny / 2;
-    let row_max = s.pressure[j * g.nx..(j + 1) * g.nx]
-        .iter()
-        .fold(0.0f64, |m, &p| m.max(p));
-    assert!(
-        (row_max / r.max_pressure - 1.0).abs() < 0.1,
-        "{row_max} {}",
-        r.max_pressure
-    );
     let warnings = thirdbody::report::model_warnings(&c, &s);
-    assert!(
-        warnings.iter().any(|w| w.contains("max_pressure")),
-        "{warnings:?}"
-    );
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
+/// Along the loaded cells of each row of `p` (`nx` cells a row), counting steps
+/// smaller than `flat` times the largest pressure as flat: the most sign changes
+/// of the first difference in a row, and the largest dip (a fall followed by a
+/// rise, where a row solution only rises to a maximum and falls), as the smaller
+/// of its two steps over the largest pressure.
+fn row_turns(p: &[f64], nx: usize, flat: f64) -> (usize, f64) {
+    let largest = p.iter().fold(0.0f64, |m, &v| m.max(v));
+    let (mut most, mut dip) = (0, 0.0f64);
+    for row in p.chunks(nx) {
+        let loaded: Vec<f64> = row.iter().copied().filter(|&v| v > 0.0).collect();
+        let steps: Vec<f64> = loaded.windows(2).map(|w| (w[1] - w[0]) / largest).collect();
+        for s in steps.windows(2) {
+            if s[0] < 0.0 && s[1] > 0.0 {
+                dip = dip.max(s[1].min(-s[0]));
+            }
+        }
+        let signs: Vec<f64> = steps
+            .iter()
+            .filter(|d| d.abs() > flat)
+            .map(|d| d.signum())
+            .collect();
+        most = most.max(signs.windows(2).filter(|s| s[0] != s[1]).count());
+    }
+    (most, dip)
+}
+
+#[test]
+fn kelvin_voigt_leading_edge_pressure_is_resolved_at_every_creep_length() {
+    // V tau / b from 0.1 (the maximum inside the contact, at x = L) to 10 (the jump
+    // at the edge is the maximum) on 256^2: max_pressure within 2 % of the row
+    // solution's, and along every row the pressure rises to one maximum and falls
+    // (or only rises), as the row solution does: no oscillation behind the jump.
+    let q = 2e-5;
+    for ratio in [0.1, 0.3, 1.0, 3.0, 10.0] {
+        // V tau = ratio b, with b the leading edge at that speed.
+        let mut v = ratio * kelvin_voigt(R, q, 0.02, 1.0, 1e-6).x_max;
+        for _ in 0..4 {
+            v = ratio * kelvin_voigt(R, q, 0.02, 1.0, v).x_max;
+        }
+        let r = kelvin_voigt(R, q, 0.02, 1.0, v);
+        let c = case(kelvin_voigt_layer(0.02), q, v, [256, 256], &r);
+        let s = solve(&c, &SolverParams::default()).unwrap();
+        let sum = s.summary();
+        let p_max = sum.max_pressure / r.max_pressure - 1.0;
+        let mu = sum.friction_coefficient / r.friction_coefficient - 1.0;
+        // Steps below 1e-12 of the maximum are rounding: flat.
+        let (turns, dip) = row_turns(&s.pressure, s.grid.nx, 1e-12);
+        eprintln!(
+            "V tau / b = {:.2}: p_max {p_max:+.2e}, mu {mu:+.2e}, most turns in a row \
+             {turns}, largest dip {dip:.1e} of p_max",
+            v / r.x_max
+        );
+        assert!(p_max.abs() < 0.02, "V tau / b {ratio}: p_max {p_max:+.2e}");
+        assert!(mu.abs() < 1e-3, "V tau / b {ratio}: mu {mu:+.2e}");
+        assert!(
+            turns <= 1 && dip < 1e-3,
+            "V tau / b {ratio}: {turns} turns, dip {dip:.1e}"
+        );
+        let warnings = thirdbody::report::model_warnings(&c, &s);
+        assert!(warnings.is_empty(), "{warnings:?}");
+    }
 }
 
 #[test]
@@ -179,9 +230,9 @@ fn creep_lengths_from_a_hundredth_of_a_cell_to_ten_cells_give_the_row_friction()
     // creep length is shorter than it; the layer reconstructs the forcing linearly
     // in each cell and integrates the branch exactly. Kelvin–Voigt and Zener layers
     // on the 128^2 window of the row solution (contact half-length about 53 cells),
-    // V tau / h = 0.01, 0.1, 1 and 10. Measured mu errors: 1.6 %, 1.4 %, 0.6 %,
-    // 0.09 % (Kelvin–Voigt), first order in h below a creep length of a cell: the
-    // contact's edges, which move with the lag, are resolved to a cell
+    // V tau / h = 0.01, 0.1, 1 and 10. Measured mu errors: 0.78 %, 0.73 %, 0.49 %,
+    // 0.080 % (Kelvin–Voigt), first order in h below a creep length of a cell, but
+    // small since both ends of each row are located inside their cells
     // (docs/validation.md).
     let q = 5e-6;
     for (name, rheology, reference) in [
@@ -195,7 +246,7 @@ fn creep_lengths_from_a_hundredth_of_a_cell_to_ten_cells_give_the_row_friction()
         }),
     ] {
         for (cells_per_creep_length, tolerance) in
-            [(100.0, 0.02), (10.0, 0.02), (1.0, 0.01), (0.1, 2e-3)]
+            [(100.0, 0.01), (10.0, 0.01), (1.0, 0.01), (0.1, 2e-3)]
         {
             // The window's cell at a first guess of the contact, then V from it.
             let guess = reference(1e-6);

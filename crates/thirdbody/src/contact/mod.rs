@@ -23,6 +23,8 @@ use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::kernel_cache::KernelCache;
+use crate::layer::{load_weights, ContactEdge, NoLayer};
+use crate::operator::{InfluenceOperator, OnCellMeans};
 use crate::passes::{add_in_order, Passes};
 use crate::problem::ContactProblem;
 use crate::report::MAX_CONTACT_FRACTION;
@@ -513,19 +515,73 @@ pub fn solve_problem(
         }
         None => {
             if cold {
+                let creeps = problem
+                    .estimate
+                    .layer
+                    .is_some_and(|l| l.relaxation_time.is_finite());
+                let row_response = match &problem.layer {
+                    Some(layer) if !creeps && grid.nx > 1 => {
+                        // A unit pressure on the middle of the first row.
+                        let n = grid.len();
+                        let cell = grid.nx / 2;
+                        let (mut unit, mut out) = (vec![0.0; n], vec![0.0; n]);
+                        unit[cell] = 1.0;
+                        layer.linearise(&vec![0.0; n]).apply(&unit, &mut out);
+                        Some((out[cell], out[cell - 1]))
+                    }
+                    _ => None,
+                };
                 p = window::rigid_base_guess(
                     &grid,
                     &problem.shape,
                     &problem.estimate,
                     problem.load,
+                    row_response,
                     params.parallelism,
                 );
             }
-            let r = newton::semismooth_newton(problem, &mut p, params, observer)?;
+            let mut r = newton::semismooth_newton(problem, &mut p, params, observer)?;
+            // A layer whose response depends on where each contact's leading edge
+            // falls inside its cell is solved again with the edges of the last
+            // solution until they stay put.
+            for _ in 0..MAX_RELOCATIONS {
+                let gap = gap_at(problem, &p, r.approach);
+                let moved = problem.layer.as_ref().and_then(|l| l.relocated(&p, &gap));
+                let Some(layer) = moved else { break };
+                problem.layer = Some(layer);
+                let again = newton::semismooth_newton(problem, &mut p, params, observer)?;
+                r.history.extend(again.history);
+                r = SolveReport {
+                    iterations: r.iterations + again.iterations,
+                    linear_iterations: r.linear_iterations + again.linear_iterations,
+                    history: r.history,
+                    ..again
+                };
+            }
             (Method::SemismoothNewton, r)
         }
     };
     finish(problem, p, method, report)
+}
+
+/// Most solves again with the contacts' leading edges located inside their cells
+/// ([`crate::layer::LayerResponse::relocated`]; two or three suffice: an edge moves
+/// with the approach, which hardly depends on it).
+const MAX_RELOCATIONS: usize = 12;
+
+/// The gap `w_body + w_layer + f - D` at the pressure `p` and approach `approach`.
+fn gap_at(problem: &mut ContactProblem, p: &[f64], approach: f64) -> Vec<f64> {
+    let n = p.len();
+    let mut gap = vec![0.0; n];
+    let layer = problem.layer.as_deref().unwrap_or(&NoLayer);
+    OnCellMeans::new(problem.influence.as_mut(), layer.contact_edges()).apply(p, &mut gap);
+    let mut wl = vec![0.0; n];
+    layer.displacement(p, &mut wl);
+    gap.iter_mut().zip(&wl).for_each(|(g, w)| *g += w);
+    gap.iter_mut()
+        .zip(&problem.shape)
+        .for_each(|(g, f)| *g += f - approach);
+    gap
 }
 
 /// Clips round-off negatives, restores the load exactly and computes every field.
@@ -539,11 +595,20 @@ fn finish(
     let n = grid.len();
     let load = problem.load;
     p.iter_mut().for_each(|v| *v = v.max(0.0));
-    let sum: f64 = p.iter().sum();
+    let entries: Vec<ContactEdge> = problem
+        .layer
+        .as_ref()
+        .map_or(Vec::new(), |l| l.contact_edges().to_vec());
+    let sum: f64 = if entries.is_empty() {
+        p.iter().sum()
+    } else {
+        let w = load_weights(&entries, n);
+        p.iter().zip(&w).map(|(p, w)| p * w).sum()
+    };
     let scale = load / (sum * grid.cell_area());
     p.iter_mut().for_each(|v| *v *= scale);
     let mut wb = vec![0.0; n];
-    problem.influence.apply(&p, &mut wb);
+    OnCellMeans::new(problem.influence.as_mut(), &entries).apply(&p, &mut wb);
     let (wl, compliance, dissipated_force) = match &problem.layer {
         Some(l) => {
             let mut wl = vec![0.0; n];
@@ -564,6 +629,7 @@ fn finish(
         grid,
         body: problem.body,
         pressure: p,
+        contact_edges: entries,
         body_displacement: wb,
         layer_displacement: wl,
         compliance,

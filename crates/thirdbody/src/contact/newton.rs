@@ -19,8 +19,8 @@ use super::{no_unique_solution, relative_complementarity_residual, Monitor, Solv
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
 use crate::krylov::Gmres;
-use crate::layer::{LayerResponse, NoLayer};
-use crate::operator::InfluenceOperator;
+use crate::layer::{load_weights, LayerResponse, NoLayer};
+use crate::operator::{InfluenceOperator, OnCellMeans};
 use crate::passes::{Passes, CHUNK};
 use crate::problem::ContactProblem;
 
@@ -80,9 +80,15 @@ pub(crate) fn semismooth_newton(
     observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<SolveReport> {
     let f = &problem.shape;
-    let op = problem.influence.as_mut();
     // A bare body is solved as one under a layer that does not deform.
     let layer = problem.layer.as_deref().unwrap_or(&NoLayer);
+    // Where the layer places contacts' edges inside cells, the body and the load
+    // see each cell's mean pressure (the centre value elsewhere).
+    let entries = layer.contact_edges();
+    let mut on_means = OnCellMeans::new(problem.influence.as_mut(), entries);
+    let op: &mut dyn InfluenceOperator = &mut on_means;
+    let weights = (!entries.is_empty()).then(|| load_weights(entries, f.len()));
+    let weighted = |k: usize, v: f64| weights.as_ref().map_or(v, |w| w[k] * v);
     let load = problem.load;
     let cell_area = problem.grid.cell_area();
     let mut monitor = Monitor::new(params, super::NEWTON_STAGNATION_WINDOW, observer);
@@ -200,7 +206,7 @@ pub(crate) fn semismooth_newton(
             full_in[k] = 1.0;
         }
         jac.solve_restricted(self_coefficient, &active, &full_in, &mut z1);
-        let z1_sum: f64 = indices.iter().map(|&k| z1[k]).sum();
+        let z1_sum: f64 = indices.iter().map(|&k| weighted(k, z1[k])).sum();
 
         let min_gather = passes.min_cells();
         let mut apply = |y: &[f64], out: &mut [f64]| {
@@ -215,7 +221,12 @@ pub(crate) fn semismooth_newton(
                 .zip(&indices[..])
                 .with_min_len(min_gather)
                 .for_each(|(o, &k)| *o = stiffness * (full_out[k] + full_aux[k] - y[m]));
-            out[m] = load_scale * y[..m].iter().sum::<f64>();
+            out[m] = load_scale
+                * y[..m]
+                    .iter()
+                    .zip(&indices[..])
+                    .map(|(&v, &k)| weighted(k, v))
+                    .sum::<f64>();
         };
         let mut precondition = |r: &[f64], out: &mut [f64]| {
             for (a, &k) in indices.iter().enumerate() {
@@ -223,7 +234,7 @@ pub(crate) fn semismooth_newton(
             }
             let rd = r[m] / load_scale;
             jac.solve_restricted(self_coefficient, &active, &full_pre, &mut full_tri);
-            let t_sum: f64 = indices.iter().map(|&k| full_tri[k]).sum();
+            let t_sum: f64 = indices.iter().map(|&k| weighted(k, full_tri[k])).sum();
             let d = (rd - t_sum) / z1_sum;
             let (full_tri, z1) = (&full_tri, &z1);
             out[..m]

@@ -251,6 +251,7 @@ pub(crate) fn rigid_base_guess(
     f: &[f64],
     e: &ContactEstimate,
     load: f64,
+    row_response: Option<(f64, f64)>,
     parallelism: Parallelism,
 ) -> Vec<f64> {
     let (c0, relaxation_time) = e
@@ -262,7 +263,13 @@ pub(crate) fn rigid_base_guess(
         grid.cell / (e.velocity * relaxation_time)
     };
     let body = std::f64::consts::PI * e.symmetric_radius / (2.0 * e.modulus);
-    let diag = body + c0 * (1.0 + 0.5 * kc);
+    // The layer's own response and its reach to the next cell downstream: the
+    // estimate's (a spring of the relaxed compliance creeping at the flow's rate),
+    // or the layer's own at zero pressure where that estimate has no creep and the
+    // layer does (retarded branches: at speed they creep over the contact as flow
+    // does, and their relaxed compliance is far from what the contact sees).
+    let (own, reach) = row_response.unwrap_or((c0 * (1.0 + 0.5 * kc), kc * c0));
+    let diag = body + own;
     let nx = grid.nx;
     let mut p = vec![0.0; f.len()];
     // Rows are independent; their loads are added in row order, so the guess is the
@@ -277,7 +284,7 @@ pub(crate) fn rigid_base_guess(
                 let mut upstream = 0.0;
                 let mut total = 0.0;
                 for i in (0..nx).rev() {
-                    let v = ((d - frow[i] - kc * c0 * upstream) / diag).max(0.0);
+                    let v = ((d - frow[i] - reach * upstream) / diag).max(0.0);
                     prow[i] = v;
                     upstream += v;
                     total += v;

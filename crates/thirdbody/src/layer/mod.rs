@@ -80,6 +80,78 @@ pub trait LayerResponse: std::fmt::Debug + Send + Sync {
     fn stall_diagnosis(&self, p: &[f64]) -> Option<String>;
     /// The compliance `C[p]` of every cell, to report (paper Fig. 3b).
     fn compliance(&self, p: &[f64]) -> Vec<f64>;
+    /// This response with each contact's leading edge located inside its first
+    /// loaded cell from a solution's pressure `p` and gap `gap` (the solvers solve
+    /// again with it), when the edges moved since the ones it uses; `None` when
+    /// they did not or when the response does not depend on them.
+    fn relocated(&self, _p: &[f64], _gap: &[f64]) -> Option<Box<dyn LayerResponse>> {
+        None
+    }
+    /// The contacts' edges along x this response places inside their cells (none
+    /// by default): there the pressure a cell carries on average differs from its
+    /// centre value ([`cell_mean_pressure`]).
+    fn contact_edges(&self) -> &[ContactEdge] {
+        &[]
+    }
+}
+
+/// A contact's edge along x inside a cell (`cell`, a flat index) of a row: the
+/// pressure is zero beyond the edge, `theta` cells from the cell's centre
+/// (`0 < theta <= 1`), and on the other side linear through the cell's centre value
+/// and its loaded neighbour's (`neighbour`, absent at the window's edge). Where a
+/// layer cannot deform instantly the pressure jumps at a leading edge; at every
+/// edge a cell's centre value is not its mean.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactEdge {
+    /// The cell the edge cuts.
+    pub cell: usize,
+    /// Its loaded neighbour in the same row.
+    pub neighbour: Option<usize>,
+    /// Distance from the edge to the cell's centre, in cells.
+    pub theta: f64,
+}
+
+impl ContactEdge {
+    /// `(a, b)` with the load the cell carries, per unit area of a cell, `a p_cell +
+    /// b p_neighbour`: the integral of the linear pressure from the edge to the
+    /// cell's face on the neighbour's side, `(theta + 1/2) p_c + (1/4 - theta^2)
+    /// (p_n - p_c) / 2`. For `theta = 1/2` (the edge on the cell's other face) it is
+    /// `(1, 0)`.
+    pub fn mean_weights(&self) -> (f64, f64) {
+        let length = self.theta + 0.5;
+        match self.neighbour {
+            Some(_) => {
+                let slope = 0.5 * (0.25 - self.theta * self.theta);
+                (length - slope, slope)
+            }
+            None => (length, 0.0),
+        }
+    }
+}
+
+/// The pressure each cell carries on average (`out`), from the centre values `p`:
+/// `p` itself but at the cells the contacts' edges cut ([`ContactEdge::mean_weights`]).
+/// This is what acts on the body and what the load and the friction integrate.
+pub fn cell_mean_pressure(entries: &[ContactEdge], p: &[f64], out: &mut [f64]) {
+    out.copy_from_slice(p);
+    for e in entries {
+        let (a, b) = e.mean_weights();
+        out[e.cell] = a * p[e.cell] + e.neighbour.map_or(0.0, |d| b * p[d]);
+    }
+}
+
+/// Per cell, the weight of its centre value in the sum of the mean pressures over
+/// the grid (`n` cells): 1 but at the cells contacts' edges cut and their neighbours.
+pub fn load_weights(entries: &[ContactEdge], n: usize) -> Vec<f64> {
+    let mut w = vec![1.0; n];
+    for e in entries {
+        let (a, b) = e.mean_weights();
+        w[e.cell] += a - 1.0;
+        if let Some(d) = e.neighbour {
+            w[d] += b;
+        }
+    }
+    w
 }
 
 /// The linearised layer `J = dw3/dp`, lower triangular along each row in the order

@@ -47,10 +47,27 @@
 //! second-difference correction is unstable beyond kappa = 0.3. The factor
 //! `e^(-2x)` fades the correction where cells are longer than the creep length:
 //! there it would bias the lag by `kappa (b - a)` of a cell's slope (5 % of the
-//! friction at `L = h / 3`) and there is no mode to damp. The mode is damped, not
-//! removed: where the leading edge's jump falls inside a cell the first cells
-//! still overshoot (up to 1.8 times the jump); resolving the jump needs the edge's
-//! position inside its cell, which the pressures alone do not give.
+//! friction at `L = h / 3`) and there is no mode to damp.
+//!
+//! The mode is excited where the leading edge's jump falls inside a cell: with the
+//! edge taken at the cell's face the first cells overshot by up to 1.8 times the
+//! jump. The edge's position comes from the solution, so the solvers solve again
+//! with it ([`LayerResponse::relocated`], until it stays put: two or three
+//! solves): in a row's first loaded cell i, whose upstream neighbour is open, the
+//! free gap (the gap less the layer's response to the cell's own load) closes
+//! linearly between the two centres, so the edge lies
+//! `theta = t_i / (t_i + g_{i+1})` cells upstream of the centre (`t_i` what the
+//! cell's load takes up, `g_{i+1}` the neighbour's gap). Each branch relaxes freely
+//! from the upstream centre to the edge and is forced from there by
+//! `F_i + d (s - theta)`, `d = F_{i-1} - F_i` (one-sided: the forcing jumps at the
+//! edge), exactly: the centre value is
+//! `e^(-x) w_{i+1} + (1 - e^(-y)) F_i - d theta entry_lag(y)`, `y = theta x`, with
+//! neither upwind term nor centred slope there, and the upstream neighbour's slope
+//! stops at the edge. The cell's mean pressure, which the body and the load see, is
+//! the integral of the pressure from the edge ([`super::ContactEdge`]); trailing
+//! edges, where the pressure falls continuously to zero, are located from the
+//! pressures the same way, which keeps the two ends of a contact alike (the
+//! friction of a nearly relaxed layer is the small difference between them).
 //!
 //! For the paper's Maxwell layer (`C_g = C_v = C[0]`, no branches) this is exactly
 //! the sum of paper eq. 8 read with the loaded cell's compliance (`secant`) or its
@@ -81,7 +98,7 @@ use rayon::prelude::*;
 
 use super::law::SIGMOID_MONOTONE_DELTA;
 use super::rheology::{CreepForm, Flow};
-use super::{ComplianceLaw, Integration, Layer, LayerLinearisation, LayerResponse};
+use super::{ComplianceLaw, ContactEdge, Integration, Layer, LayerLinearisation, LayerResponse};
 use crate::convolution::Parallelism;
 use crate::passes::{Passes, CHUNK};
 
@@ -106,6 +123,144 @@ fn dot(u: &[f64], v: &[f64]) -> f64 {
 
 /// Fraction of the full upwind correction applied (module docs).
 const UPWIND: f64 = 0.1;
+
+/// Smallest distance from a contact's edge to its entry cell's centre, in cells.
+const MIN_ENTRY: f64 = 1e-6;
+
+/// Change of an entry fraction, relative to it (or to 0.1 when smaller), below
+/// which a located edge has not moved: the entry cell's pressure errs by as much.
+const ENTRY_TOLERANCE: f64 = 1e-4;
+
+/// Share of its move an edge makes from one solve to the next (module docs): the
+/// approach's response to the edges' loads turns the plain update into an
+/// alternating one with a factor of about -1/2 per solve, which 2/3 removes.
+const RELOCATION_STEP: f64 = 2.0 / 3.0;
+
+/// Change of a trailing edge's position, in cells, below which it has not moved
+/// (it sets only how much load a cell carries, where the pressure is small).
+const EXIT_TOLERANCE: f64 = 1e-2;
+
+/// Shift, in cells, within which an edge that passed a cell's centre has not
+/// moved: where an edge lies at a centre, the solves alternate between that cell
+/// barely loaded and its neighbour entered a full cell from the edge, the same
+/// contact to within the shift.
+const CENTRE_CROSSING: f64 = 0.05;
+
+/// Where, in cells upstream of a centre whose free gap is `here <= 0`, the free gap
+/// reaches zero on its way to `next > 0` one cell upstream: on the parabola through
+/// `further`, the gap two cells upstream, when given (exact for a paraboloid on a
+/// rigid base; the straight line misses by about `h / 8b` of a cell, b the
+/// contact's half-length, which a Kelvin–Voigt entry cell's pressure takes in full
+/// relative to theta), else on the straight line.
+fn gap_closure(here: f64, next: f64, further: Option<f64>) -> f64 {
+    let linear = -here / (next - here);
+    let Some(further) = further else {
+        return linear;
+    };
+    // g(s) = here + a s + c s (s - 1) through s = 0, 1, 2.
+    let a = next - here;
+    let c = 0.5 * (further - 2.0 * next + here);
+    let b = a - c;
+    let discriminant = b * b - 4.0 * c * here;
+    if discriminant < 0.0 {
+        return linear;
+    }
+    // The root of c s^2 + b s + here = 0 near the linear one, in the form without
+    // cancellation (here < 0, b > 0 where the gap opens upstream).
+    let root = -2.0 * here / (b + discriminant.sqrt());
+    if (0.0..=1.0).contains(&root) {
+        root
+    } else {
+        linear
+    }
+}
+
+/// Whether `e` is a leading edge (its loaded neighbour downstream, at -x).
+fn leading(e: &ContactEdge) -> bool {
+    e.neighbour.is_none_or(|n| n < e.cell)
+}
+
+/// The edges to solve with next, from the ones a solution used (`old`) and the ones
+/// located on it (`new`), and whether they have settled: every entry cell of `old`
+/// is still loaded, and each edge is where it was, in the same cell to
+/// [`ENTRY_TOLERANCE`] (leading) or [`EXIT_TOLERANCE`] (trailing), across a
+/// centre to [`CENTRE_CROSSING`]. Settled edges keep their old place (a crossing
+/// would otherwise alternate); an edge that moved within its cell moves by
+/// [`RELOCATION_STEP`] of the way, since the load it shifts moves the approach and,
+/// with it, the other edges back.
+fn next_edges(
+    old: &[ContactEdge],
+    previous: &[(f64, f64)],
+    new: Vec<ContactEdge>,
+    p: &[f64],
+    nx: usize,
+) -> (Vec<ContactEdge>, bool) {
+    // Position along the row in cells, +x upstream.
+    let position = |e: &ContactEdge| {
+        let i = (e.cell % nx) as f64;
+        if leading(e) {
+            i + e.theta
+        } else {
+            i - e.theta
+        }
+    };
+    let matched = old.len() == new.len()
+        && old
+            .iter()
+            .zip(&new)
+            .all(|(a, b)| leading(a) == leading(b) && a.cell / nx == b.cell / nx);
+    if !matched {
+        return (new, false);
+    }
+    let mut settled = true;
+    let edges = old
+        .iter()
+        .zip(new)
+        .enumerate()
+        .map(|(index, (a, b))| {
+            if leading(a) && p[a.cell] <= 0.0 {
+                settled = false;
+                return b;
+            }
+            let shift = (position(a) - position(&b)).abs();
+            if a.cell != b.cell {
+                if shift <= CENTRE_CROSSING {
+                    return *a;
+                }
+                settled = false;
+                return b;
+            }
+            let allowed = if leading(a) {
+                ENTRY_TOLERANCE * a.theta.max(b.theta)
+            } else {
+                EXIT_TOLERANCE
+            };
+            if shift <= allowed {
+                return *a;
+            }
+            settled = false;
+            // A secant step on theta = prediction(theta) where the last solve's
+            // edge was in this cell too, a damped step otherwise.
+            let step = match previous.get(index) {
+                Some(&(theta, predicted)) if (a.theta - theta).abs() > 1e-12 => {
+                    let slope = (b.theta - predicted) / (a.theta - theta);
+                    1.0 / (1.0 - slope.clamp(-3.0, 0.8))
+                }
+                _ => RELOCATION_STEP,
+            };
+            ContactEdge {
+                theta: (a.theta + step * (b.theta - a.theta)).clamp(MIN_ENTRY, 1.0),
+                ..b
+            }
+        })
+        .collect();
+    (edges, settled)
+}
+
+/// Creep lengths, in cells, below which a branch is taken as relaxed at the
+/// contact's edges: located edges fade as `exp(-h / (V tau RELAXED_CELLS))` (module
+/// docs).
+const RELAXED_CELLS: f64 = 1e3;
 
 /// One Kelvin–Voigt branch on the grid.
 #[derive(Debug, Clone, Copy)]
@@ -141,15 +296,61 @@ impl BranchStep {
     /// (w_out - w_in)`, `int p dw = p0 dw + (p1 - p0) (w_out - mean f + dw / y)`.
     fn half_cell_work(&self, e: &mut f64, start: (f64, f64), end: (f64, f64)) -> f64 {
         let y = 0.5 * self.cells_per_creep_length;
+        let gains = (self.keep_half, self.take_half, self.ramp_half);
+        self.segment_work(e, start, end, y, gains)
+    }
+
+    /// [`Self::half_cell_work`] over `y` creep lengths, with `gains` =
+    /// `(e^(-y), 1 - e^(-y), ramp_gain(y))`.
+    fn segment_work(
+        &self,
+        e: &mut f64,
+        start: (f64, f64),
+        end: (f64, f64),
+        y: f64,
+        (keep, take, ramp): (f64, f64, f64),
+    ) -> f64 {
         if y == 0.0 {
             return 0.0;
         }
         let (f0, f1) = (self.scale * start.1, self.scale * end.1);
-        let out = self.keep_half * *e + self.take_half * f0 + (f1 - f0) * self.ramp_half;
+        let out = keep * *e + take * f0 + (f1 - f0) * ramp;
         let moved = out - *e;
         let work = start.0 * moved + (end.0 - start.0) * (out - 0.5 * (f0 + f1) + moved / y);
         *e = out;
         work
+    }
+
+    /// The branch's response at the centre of a contact's entry cell to the forcing
+    /// entering at `theta` cells upstream of the centre, `F_i + d (s - theta)` in
+    /// cells `s` from the edge (`d` the forcing's change per cell along the path):
+    /// `(1 - e^(-y)) F_i - d theta entry_lag(y)`, `y = theta h / (V tau)`, per unit
+    /// of `C_k / C[0]`; as two coefficients `(of F_i, of d)`.
+    fn entry_gains(&self, theta: f64) -> (f64, f64) {
+        let y = theta * self.cells_per_creep_length;
+        (-(-y).exp_m1(), -theta * entry_lag(y))
+    }
+
+    /// What the exit value of an entry cell at `theta` gains per unit of its
+    /// downstream neighbour's forcing, through the centre value and the downstream
+    /// half cell (per unit of `C_k / C[0]`).
+    fn entry_exit_gain(&self, theta: f64) -> f64 {
+        let (_, of_slope) = self.entry_gains(theta);
+        self.keep_half * of_slope + 0.5 * self.ramp_half
+    }
+}
+
+/// `(1 - e^(-y) (1 + y)) / y`: a branch started at zero and driven over `y` creep
+/// lengths by a forcing that rises by 1 per creep length, less the same forcing's
+/// final value times `1 - e^(-y)`, changes sign: this is what it lags behind (`y/2`
+/// for small y, `1/y` for large y, 0 at both ends).
+fn entry_lag(y: f64) -> f64 {
+    if y < 1e-3 {
+        y * (0.5 - y * (1.0 / 3.0 - y / 8.0))
+    } else if y.is_infinite() {
+        0.0
+    } else {
+        (1.0 - (-y).exp() * (1.0 + y)) / y
     }
 }
 
@@ -219,6 +420,18 @@ pub struct ViscoelasticRows {
     lag_half: f64,
     /// How the row passes are split over threads.
     passes: Passes,
+    /// Per cell, where a contact enters it: `theta` in (0, 1] for a loaded cell
+    /// whose upstream neighbour is not, the distance from the edge to the cell's
+    /// centre in cells; 0 elsewhere (empty: no entries located yet).
+    entries: Vec<f64>,
+    /// The same entries as a list.
+    edge_list: Vec<ContactEdge>,
+    /// Per edge of `edge_list`, the theta of the solve before and the edge located
+    /// on it (NaN when it was in another cell): the relocation's secant steps.
+    edge_history: Vec<(f64, f64)>,
+    /// How far the contacts' edges are located inside their cells, 0 (at the
+    /// faces: no branch lags across a cell) to 1 (module docs).
+    edge_share: f64,
 }
 
 impl ViscoelasticRows {
@@ -272,6 +485,14 @@ impl ViscoelasticRows {
                 .sum::<f64>();
         let lag_half = branches.iter().map(|b| b.lag_half).sum();
         ViscoelasticRows {
+            entries: Vec::new(),
+            edge_list: Vec::new(),
+            edge_history: Vec::new(),
+            edge_share: branches
+                .iter()
+                .filter(|b| b.cells_per_creep_length > 0.0)
+                .map(|b| (-b.cells_per_creep_length / RELAXED_CELLS).exp())
+                .fold(0.0, f64::max),
             lag_half,
             upwind,
             branch_own,
@@ -331,41 +552,154 @@ impl ViscoelasticRows {
         let rows = p
             .par_chunks_exact(self.nx)
             .zip(w3.par_chunks_exact_mut(self.nx))
+            .enumerate()
             .with_min_len(self.passes.min_rows(self.nx));
         rows.for_each_init(
             || vec![0.0; self.branches.len()],
-            |state, (prow, wrow)| {
-                let mut upstream = 0.0;
-                let mut upstream_forcing = 0.0;
-                state.fill(0.0);
-                // The cell's forcing and creep rate, and the downstream cell's
-                // forcing (the slope of the forcing is centred), each law evaluation
-                // done once per cell.
-                let mut here = self.forcing_and_creep(prow[self.nx - 1]);
-                for i in (0..self.nx).rev() {
-                    let ((f, _), (q, _)) = here;
-                    if i > 0 {
-                        here = self.forcing_and_creep(prow[i - 1]);
-                    }
-                    let downstream_forcing = if i > 0 { here.0 .0 } else { 0.0 };
-                    let rise = upstream_forcing - downstream_forcing;
-                    let mut retarded = 0.0;
-                    for (b, e) in self.branches.iter().zip(state.iter_mut()) {
-                        let force = b.scale * f;
-                        retarded += b.keep_half * *e + b.take_half * force;
-                        *e = b.keep_full * *e + b.take_full * force + b.lag_full * rise;
-                    }
-                    if !self.branches.is_empty() {
-                        retarded += self.upwind * (f - upstream_forcing) + self.lag_half * rise;
-                    }
-                    wrow[i] = self.glassy_scale * f
-                        + self.flow_per_cell * (upstream + 0.5 * q)
-                        + retarded;
-                    upstream += q;
-                    upstream_forcing = f;
-                }
-            },
+            |state, (r, (prow, wrow))| self.sweep_row(prow, self.row_entries(r), state, wrow, None),
         );
+    }
+
+    /// The entry fractions of row `r` (empty when the layer has none).
+    fn row_entries(&self, r: usize) -> &[f64] {
+        if self.entries.is_empty() {
+            &[]
+        } else {
+            &self.entries[r * self.nx..(r + 1) * self.nx]
+        }
+    }
+
+    /// One row of [`Self::row_sweep`]; `free`, if given, receives what each cell's
+    /// displacement would be at zero pressure in that cell alone (the flow and the
+    /// branches carried in from upstream).
+    fn sweep_row(
+        &self,
+        prow: &[f64],
+        entries: &[f64],
+        state: &mut [f64],
+        wrow: &mut [f64],
+        mut free: Option<&mut [f64]>,
+    ) {
+        let nx = self.nx;
+        let entry = |i: usize| entries.get(i).copied().unwrap_or(0.0);
+        let mut upstream = 0.0;
+        let mut upstream_forcing = 0.0;
+        state.fill(0.0);
+        // The cell's forcing and creep rate, and the downstream cell's forcing (the
+        // slope of the forcing is centred), each law evaluation done once per cell.
+        let mut here = self.forcing_and_creep(prow[nx - 1]);
+        for i in (0..nx).rev() {
+            let ((f, _), (q, _)) = here;
+            if i > 0 {
+                here = self.forcing_and_creep(prow[i - 1]);
+            }
+            let next_forcing = if i > 0 { here.0 .0 } else { 0.0 };
+            if let Some(free) = free.as_deref_mut() {
+                let carried: f64 = self
+                    .branches
+                    .iter()
+                    .zip(state.iter())
+                    .map(|(b, e)| b.keep_half * e)
+                    .sum();
+                free[i] = self.flow_per_cell * upstream + carried;
+            }
+            let theta = entry(i);
+            let mut retarded = 0.0;
+            if theta > 0.0 {
+                // A contact's entry cell: the branches are forced from the edge on.
+                let d = next_forcing - f;
+                for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                    let (of_forcing, of_slope) = b.entry_gains(theta);
+                    let centre = b.keep_half * *e + b.scale * (of_forcing * f + of_slope * d);
+                    retarded += centre;
+                    *e = b.keep_half * centre + b.scale * (b.take_half * f + 0.5 * d * b.ramp_half);
+                }
+            } else {
+                // Upstream of an entry cell the forcing is zero up to the edge: the
+                // slope does not reach across it.
+                let downstream_forcing = if i > 0 && entry(i - 1) > 0.0 {
+                    0.0
+                } else {
+                    next_forcing
+                };
+                let rise = upstream_forcing - downstream_forcing;
+                for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                    let force = b.scale * f;
+                    retarded += b.keep_half * *e + b.take_half * force;
+                    *e = b.keep_full * *e + b.take_full * force + b.lag_full * rise;
+                }
+                if !self.branches.is_empty() {
+                    retarded += self.upwind * (f - upstream_forcing) + self.lag_half * rise;
+                }
+            }
+            wrow[i] = self.glassy_scale * f + self.flow_per_cell * (upstream + 0.5 * q) + retarded;
+            upstream += q;
+            upstream_forcing = f;
+        }
+    }
+
+    /// One row's dissipated energy per unit area of path (see
+    /// [`Self::dissipated_force`]).
+    fn row_dissipation(&self, prow: &[f64], entries: &[f64], state: &mut [f64]) -> f64 {
+        let entry = |i: usize| entries.get(i).copied().unwrap_or(0.0);
+        state.fill(0.0);
+        let mut row = 0.0;
+        let n = self.nx;
+        // Pressure and forcing at the upstream face (the mean of the two cells, or
+        // half the cell's at the window's edge).
+        let mut upstream = (0.0, 0.0);
+        let mut here = self.forcing_and_creep(prow[n - 1]);
+        for i in (0..n).rev() {
+            let ((f, _), (q, _)) = here;
+            let p = prow[i];
+            let downstream = if i > 0 {
+                here = self.forcing_and_creep(prow[i - 1]);
+                (prow[i - 1], here.0 .0)
+            } else {
+                (0.0, 0.0)
+            };
+            row += p * (self.flow_per_cell * q);
+            if !self.branches.is_empty() {
+                let exit = (0.5 * (p + downstream.0), 0.5 * (f + downstream.1));
+                let theta = entry(i);
+                if theta > 0.0 {
+                    // Free relaxation from the upstream centre to the edge, then the
+                    // loaded part of the cell, reconstructed linearly through the
+                    // downstream neighbour (as the displacement is).
+                    let edge = (
+                        p - theta * (downstream.0 - p),
+                        f - theta * (downstream.1 - f),
+                    );
+                    for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                        let free = (1.0 - theta) * b.cells_per_creep_length;
+                        if free > 0.0 {
+                            *e *= (-free).exp();
+                        }
+                        let y = theta * b.cells_per_creep_length;
+                        let gains = (
+                            (-y).exp(),
+                            -(-y).exp_m1(),
+                            if y.is_infinite() { 1.0 } else { ramp_gain(y) },
+                        );
+                        row += b.segment_work(e, edge, (p, f), y, gains);
+                        row += b.half_cell_work(e, (p, f), exit);
+                    }
+                } else {
+                    let entry_half = (0.5 * (upstream.0 + p), 0.5 * (upstream.1 + f));
+                    // Upstream of an entry cell nothing is loaded past the centre;
+                    // the entry cell carries the branches on from this centre.
+                    let before_entry = i > 0 && entry(i - 1) > 0.0;
+                    for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                        row += b.half_cell_work(e, entry_half, (p, f));
+                        if !before_entry {
+                            row += b.half_cell_work(e, (p, f), exit);
+                        }
+                    }
+                }
+            }
+            upstream = (p, f);
+        }
+        row
     }
 
     /// The power dissipated in the layer divided by the sliding speed (a force:
@@ -377,39 +711,11 @@ impl ViscoelasticRows {
         // number of threads).
         let rows: Vec<f64> = p
             .par_chunks(self.nx)
+            .enumerate()
             .with_min_len(self.passes.min_rows(self.nx))
             .map_init(
                 || vec![0.0; self.branches.len()],
-                |state, prow| {
-                    state.fill(0.0);
-                    let mut row = 0.0;
-                    let n = self.nx;
-                    // Pressure and forcing at the upstream face (the mean of the two
-                    // cells, or half the cell's at the window's edge).
-                    let mut upstream = (0.0, 0.0);
-                    let mut here = self.forcing_and_creep(prow[n - 1]);
-                    for i in (0..n).rev() {
-                        let ((f, _), (q, _)) = here;
-                        let p = prow[i];
-                        let downstream = if i > 0 {
-                            here = self.forcing_and_creep(prow[i - 1]);
-                            (prow[i - 1], here.0 .0)
-                        } else {
-                            (0.0, 0.0)
-                        };
-                        row += p * (self.flow_per_cell * q);
-                        if !self.branches.is_empty() {
-                            let entry = (0.5 * (upstream.0 + p), 0.5 * (upstream.1 + f));
-                            let exit = (0.5 * (p + downstream.0), 0.5 * (f + downstream.1));
-                            for (b, e) in self.branches.iter().zip(state.iter_mut()) {
-                                row += b.half_cell_work(e, entry, (p, f));
-                                row += b.half_cell_work(e, (p, f), exit);
-                            }
-                        }
-                        upstream = (p, f);
-                    }
-                    row
-                },
+                |state, (r, prow)| self.row_dissipation(prow, self.row_entries(r), state),
             )
             .collect();
         let total: f64 = rows.iter().fold(0.0, |t, r| t + r);
@@ -453,7 +759,40 @@ impl ViscoelasticRows {
                 diagonal[k] += lag_self * forcing_slope[k];
             }
         }
+        let entries = if self.entries.len() == n {
+            self.entries.clone()
+        } else {
+            Vec::new()
+        };
+        for (k, &theta) in entries.iter().enumerate() {
+            if theta <= 0.0 {
+                continue;
+            }
+            // An entry cell's branches are forced from the edge only; the cell
+            // downstream of it gets the entry's exit value's share instead of the
+            // centred slope's.
+            let ((_, df), (_, dq)) = self.forcing_and_creep(p[k]);
+            let own: f64 = self
+                .branches
+                .iter()
+                .map(|b| {
+                    let (of_forcing, of_slope) = b.entry_gains(theta);
+                    b.scale * (of_forcing - of_slope)
+                })
+                .sum();
+            diagonal[k] = (self.glassy_scale + own) * df + 0.5 * self.flow_per_cell * dq;
+            if k % self.nx > 0 {
+                let share: f64 = self
+                    .branches
+                    .iter()
+                    .map(|b| b.keep_half * b.scale * b.entry_exit_gain(theta))
+                    .sum();
+                diagonal[k - 1] += (lag_self + share) * forcing_slope[k - 1];
+            }
+        }
         ViscoelasticJacobian {
+            entries,
+            branches: self.branches.clone(),
             min_rows: self.passes.min_rows(self.nx),
             upwind: self.upwind,
             nx: self.nx,
@@ -471,6 +810,46 @@ impl ViscoelasticRows {
             lag_half: self.lag_half,
             lag_self,
         }
+    }
+
+    /// Where each contact enters its first loaded cell (module docs), from a
+    /// solution's pressure and gap; `None` for a layer without branches.
+    fn entries_of(&self, p: &[f64], gap: &[f64]) -> Option<Vec<f64>> {
+        if self.edge_share == 0.0 || p.len() != self.nx * self.ny || gap.len() != p.len() {
+            return None;
+        }
+        let located = |theta: f64| (0.5 + self.edge_share * (theta - 0.5)).max(MIN_ENTRY);
+        let nx = self.nx;
+        let mut entries = vec![0.0; p.len()];
+        entries
+            .par_chunks_mut(nx)
+            .zip(p.par_chunks(nx).zip(gap.par_chunks(nx)))
+            .enumerate()
+            .with_min_len(self.passes.min_rows(nx))
+            .for_each_init(
+                || (vec![0.0; self.branches.len()], vec![0.0; nx], vec![0.0; nx]),
+                |(state, w, free), (r, (theta, (prow, grow)))| {
+                    self.sweep_row(prow, self.row_entries(r), state, w, Some(free));
+                    for i in 0..nx - 1 {
+                        if prow[i] > 0.0 && prow[i + 1] <= 0.0 {
+                            // The free gap (the gap less the layer's response to
+                            // the cell's own load) closes between the open upstream
+                            // centre and this one: quadratically through a second
+                            // open cell upstream when there is one, else linearly.
+                            let taken = (w[i] - free[i]).max(0.0);
+                            let open = grow[i + 1].max(0.0);
+                            let further =
+                                (i + 2 < nx && prow[i + 2] <= 0.0).then(|| grow[i + 2].max(0.0));
+                            theta[i] = if taken + open > 0.0 {
+                                located(gap_closure(-taken, open, further))
+                            } else {
+                                0.5
+                            };
+                        }
+                    }
+                },
+            );
+        Some(entries)
     }
 
     /// Cells along x.
@@ -517,6 +896,10 @@ pub struct ViscoelasticJacobian {
     /// Fewest rows per rayon task (`usize::MAX`: one thread), from the layer's
     /// passes.
     min_rows: usize,
+    /// The layer's entry fractions (empty: none).
+    entries: Vec<f64>,
+    /// The branches, for the entry cells.
+    branches: Vec<BranchStep>,
 }
 
 impl ViscoelasticJacobian {
@@ -538,6 +921,11 @@ impl ViscoelasticJacobian {
         }
     }
 
+    /// The entry fraction of cell `k` (0: not an entry cell).
+    fn entry(&self, k: usize) -> f64 {
+        self.entries.get(k).copied().unwrap_or(0.0)
+    }
+
     /// `out = J dp`.
     pub fn apply(&self, dp: &[f64], out: &mut [f64]) {
         let nx = self.nx;
@@ -545,9 +933,10 @@ impl ViscoelasticJacobian {
         rows.with_min_len(self.min_rows).enumerate().for_each_init(
             || vec![0.0; self.keep_half.len()],
             |state, (r, (drow, orow))| {
-                let diag = &self.diagonal[r * nx..(r + 1) * nx];
-                let slope = &self.flow_slope[r * nx..(r + 1) * nx];
-                let fslope = &self.forcing_slope[r * nx..(r + 1) * nx];
+                let base = r * nx;
+                let diag = &self.diagonal[base..base + nx];
+                let slope = &self.flow_slope[base..base + nx];
+                let fslope = &self.forcing_slope[base..base + nx];
                 let mut upstream = 0.0;
                 let mut upstream_forcing = 0.0;
                 // While nothing has entered the branches, they carry nothing.
@@ -556,28 +945,57 @@ impl ViscoelasticJacobian {
                 let branched = !self.keep_half.is_empty();
                 for i in (0..nx).rev() {
                     let df = fslope[i] * drow[i];
-                    let downstream = if i > 0 && branched {
+                    let next = if i > 0 && branched {
                         fslope[i - 1] * drow[i - 1]
                     } else {
                         0.0
                     };
-                    let rise = upstream_forcing - downstream;
-                    live |= df != 0.0 || downstream != 0.0;
-                    let entering = if live {
-                        let e = self.entering(state);
-                        self.advance(state, df, rise);
-                        e
+                    let theta = self.entry(base + i);
+                    if theta > 0.0 {
+                        // The entry cell (module docs): forced from the edge on.
+                        let d = next - df;
+                        live = true;
+                        let mut carried = 0.0;
+                        let mut across = 0.0;
+                        for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                            let (of_forcing, of_slope) = b.entry_gains(theta);
+                            carried += b.keep_half * *e;
+                            across += b.scale * of_slope;
+                            let centre =
+                                b.keep_half * *e + b.scale * (of_forcing * df + of_slope * d);
+                            *e = b.keep_half * centre
+                                + b.scale * (b.take_half * df + 0.5 * d * b.ramp_half);
+                        }
+                        // `diag` holds the own terms; the downstream neighbour's
+                        // through the slope.
+                        orow[i] = diag[i] * drow[i] + upstream + carried + across * next;
                     } else {
-                        0.0
-                    };
-                    orow[i] =
-                        diag[i] * drow[i] + upstream + entering - self.upwind * upstream_forcing;
-                    if branched {
-                        // `diag` holds the upstream exit's share, which `entering`
-                        // already carries here; and the downstream neighbour's term.
-                        orow[i] += self.lag_half * rise;
-                        if i + 1 < nx {
-                            orow[i] += self.lag_self * df;
+                        let before_entry = i > 0 && self.entry(base + i - 1) > 0.0;
+                        let downstream = if before_entry { 0.0 } else { next };
+                        let rise = upstream_forcing - downstream;
+                        live |= df != 0.0 || downstream != 0.0;
+                        let entering = if live {
+                            let e = self.entering(state);
+                            self.advance(state, df, rise);
+                            e
+                        } else {
+                            0.0
+                        };
+                        orow[i] = diag[i] * drow[i] + upstream + entering
+                            - self.upwind * upstream_forcing;
+                        if branched {
+                            // `diag` holds the upstream exit's share, which
+                            // `entering` already carries here; and the downstream
+                            // neighbour's term.
+                            orow[i] += self.lag_half * rise;
+                            if i + 1 < nx {
+                                let up = self.entry(base + i + 1);
+                                orow[i] -= if up > 0.0 {
+                                    self.entry_share(up) * df
+                                } else {
+                                    -self.lag_self * df
+                                };
+                            }
                         }
                     }
                     upstream += slope[i] * drow[i];
@@ -585,6 +1003,16 @@ impl ViscoelasticJacobian {
                 }
             },
         );
+    }
+
+    /// `sum_k b_k (C_k / C[0]) entry_exit_gain_k(theta)`: the part of a cell's
+    /// `J_ii` that reaches it through the exit value of an upstream entry cell at
+    /// `theta`.
+    fn entry_share(&self, theta: f64) -> f64 {
+        self.branches
+            .iter()
+            .map(|b| b.keep_half * b.scale * b.entry_exit_gain(theta))
+            .sum()
     }
 
     /// Solves `(J + extra_diagonal I) y = r` restricted to the cells where `active`
@@ -609,6 +1037,7 @@ impl ViscoelasticJacobian {
                 for i in (0..nx).rev() {
                     let k = base + i;
                     let entering = if live { self.entering(state) } else { 0.0 };
+                    let theta = self.entry(k);
                     if active[k] {
                         let mut d = self.diagonal[k] + extra_diagonal;
                         if d <= 0.1 * extra_diagonal {
@@ -616,24 +1045,40 @@ impl ViscoelasticJacobian {
                         }
                         // The downstream neighbour's share (`- lag_half dF_{i-1}`, above
                         // the diagonal) is left out: a preconditioner.
-                        let lag = if branched {
+                        let lag = if branched && theta <= 0.0 {
                             self.lag_half * upstream_forcing
                         } else {
                             0.0
                         };
-                        y[i] =
-                            (r[k] - upstream - entering + self.upwind * upstream_forcing - lag) / d;
+                        let upwind = if theta > 0.0 { 0.0 } else { self.upwind };
+                        y[i] = (r[k] - upstream - entering + upwind * upstream_forcing - lag) / d;
                     } else {
                         y[i] = 0.0;
                     }
                     let df = self.forcing_slope[k] * y[i];
                     live |= df != 0.0;
-                    if live {
+                    if live && theta > 0.0 {
+                        // The entry cell, with its downstream neighbour's forcing
+                        // left out.
+                        for (b, e) in self.branches.iter().zip(state.iter_mut()) {
+                            let (of_forcing, of_slope) = b.entry_gains(theta);
+                            let centre = b.keep_half * *e + b.scale * (of_forcing - of_slope) * df;
+                            *e = b.keep_half * centre
+                                + b.scale * (b.take_half - 0.5 * b.ramp_half) * df;
+                        }
+                    } else if live {
                         if branched && df != 0.0 && i + 1 < nx {
                             // The upstream cell's exit value, now that this cell's
                             // forcing is known (its share of J_ii was in `d`).
-                            for (e, l) in state.iter_mut().zip(&self.lag_full) {
-                                *e -= l * df;
+                            let up = self.entry(k + 1);
+                            if up > 0.0 {
+                                for (e, b) in state.iter_mut().zip(&self.branches) {
+                                    *e += b.scale * b.entry_exit_gain(up) * df;
+                                }
+                            } else {
+                                for (e, l) in state.iter_mut().zip(&self.lag_full) {
+                                    *e -= l * df;
+                                }
                             }
                         }
                         self.advance(state, df, upstream_forcing);
@@ -736,6 +1181,81 @@ impl LayerResponse for ViscoelasticRows {
 
     fn dissipated_force(&self, p: &[f64]) -> f64 {
         ViscoelasticRows::dissipated_force(self, p)
+    }
+
+    fn relocated(&self, p: &[f64], gap: &[f64]) -> Option<Box<dyn LayerResponse>> {
+        let entries = self.entries_of(p, gap)?;
+        let nx = self.nx;
+        let mut edges = Vec::new();
+        for (cell, &theta) in entries.iter().enumerate() {
+            let i = cell % nx;
+            if theta > 0.0 {
+                edges.push(ContactEdge {
+                    cell,
+                    neighbour: (i > 0).then(|| cell - 1),
+                    theta,
+                });
+            } else if i > 0
+                && i + 1 < nx
+                && p[cell] > 0.0
+                && p[cell - 1] <= 0.0
+                && p[cell + 1] > 0.0
+            {
+                // A trailing edge: the pressure falls to zero continuously there,
+                // where its line through this centre and the upstream one crosses
+                // zero. Locating it too keeps the two ends of a contact alike (a
+                // relaxed layer's friction is the small difference of the two).
+                let fall = p[cell + 1] - p[cell];
+                let theta = if fall > 0.0 {
+                    (p[cell] / fall).min(1.0)
+                } else {
+                    1.0
+                };
+                let theta = (0.5 + self.edge_share * (theta - 0.5)).max(MIN_ENTRY);
+                edges.push(ContactEdge {
+                    cell,
+                    neighbour: Some(cell + 1),
+                    theta,
+                });
+            }
+        }
+        // Each edge's theta and the prediction from it, for the next secant step
+        // (kept only while the edge stays in its cell).
+        let history: Vec<(f64, f64)> = self
+            .edge_list
+            .iter()
+            .zip(&edges)
+            .map(|(a, b)| {
+                if a.cell == b.cell {
+                    (a.theta, b.theta)
+                } else {
+                    (f64::NAN, f64::NAN)
+                }
+            })
+            .collect();
+        let (edges, settled) = next_edges(&self.edge_list, &self.edge_history, edges, p, nx);
+        if settled {
+            return None;
+        }
+        let mut entries = vec![0.0; entries.len()];
+        for e in edges.iter().filter(|e| leading(e)) {
+            entries[e.cell] = e.theta;
+        }
+        let history = if history.len() == edges.len() {
+            history
+        } else {
+            Vec::new()
+        };
+        Some(Box::new(ViscoelasticRows {
+            entries,
+            edge_list: edges,
+            edge_history: history,
+            ..self.clone()
+        }))
+    }
+
+    fn contact_edges(&self) -> &[ContactEdge] {
+        &self.edge_list
     }
 }
 
@@ -1003,6 +1523,114 @@ mod tests {
             lower(&y, &mut jy);
             for k in (0..12).filter(|&k| active[k]) {
                 assert!((jy[k] - r[k]).abs() < 1e-12, "{k}: {} {}", jy[k], r[k]);
+            }
+        }
+    }
+
+    /// `op` with entries at the cells and thetas given (the relocation's result).
+    fn with_entries(op: &ViscoelasticRows, at: &[(usize, f64)]) -> ViscoelasticRows {
+        let mut entries = vec![0.0; op.nx * op.ny];
+        for &(cell, theta) in at {
+            entries[cell] = theta;
+        }
+        ViscoelasticRows {
+            entries,
+            ..op.clone()
+        }
+    }
+
+    #[test]
+    fn jacobian_with_located_entries_matches_finite_differences_and_inverts() {
+        // Entry cells (their upstream neighbour unloaded) in both rows, one at the
+        // row's downstream end; Burgers-like (glassy, branches, flow) and
+        // Kelvin–Voigt-like (branches only) layers, nonlinear laws.
+        let kelvin_voigt = Layer {
+            rheology: Rheology::Prony {
+                glassy_compliance: 0.0,
+                branches: vec![
+                    RetardationBranch {
+                        compliance: 0.02,
+                        time: 1.0,
+                    },
+                    RetardationBranch {
+                        compliance: 0.01,
+                        time: 0.1,
+                    },
+                ],
+                viscosity: None,
+            },
+            law: ComplianceLaw::Sigmoid {
+                delta: 0.6,
+                p0: 0.002,
+            },
+            integration: Integration::Exact,
+        };
+        let layers = [
+            prony(
+                ComplianceLaw::Sigmoid {
+                    delta: 0.6,
+                    p0: 0.002,
+                },
+                Integration::Exact,
+                Some(30.0),
+            ),
+            prony(ComplianceLaw::Linear, Integration::Secant, None),
+            kelvin_voigt,
+        ];
+        for layer in layers {
+            let base = ViscoelasticRows::new(layer, 6, 2, 0.1, 0.03);
+            let op = with_entries(&base, &[(3, 0.3), (6, 0.8), (9, 0.05)]);
+            let mut p: Vec<f64> = (0..12).map(|k| 0.0007 * (1 + (k * 5) % 7) as f64).collect();
+            // Nearly unloaded upstream of the entries (at zero the laws' second
+            // derivative jumps, which a central difference does not like).
+            for k in [4, 10] {
+                p[k] = 1e-6;
+            }
+            let jac = op.jacobian(&p);
+            let dp: Vec<f64> = (0..12).map(|k| ((k * 3) % 4) as f64 - 1.5).collect();
+            let mut jd = vec![0.0; 12];
+            jac.apply(&dp, &mut jd);
+            let e = 1e-8;
+            let plus: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + e * b).collect();
+            let minus: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a - e * b).collect();
+            let (mut wp, mut wm) = (vec![0.0; 12], vec![0.0; 12]);
+            op.row_sweep(&plus, &mut wp);
+            op.row_sweep(&minus, &mut wm);
+            for k in 0..12 {
+                let fd = (wp[k] - wm[k]) / (2.0 * e);
+                assert!(
+                    (jd[k] - fd).abs() < 1e-6 * fd.abs().max(1e-3),
+                    "{k}: {} {fd}",
+                    jd[k]
+                );
+            }
+            // The entries above the diagonal, by finite differences of unit
+            // perturbations, are what the preconditioner leaves out.
+            let above = |k: usize| {
+                let mut unit = vec![0.0; 12];
+                unit[k - 1] = 1.0;
+                let mut out = vec![0.0; 12];
+                jac.apply(&unit, &mut out);
+                out[k]
+            };
+            let upper: Vec<f64> = (0..12)
+                .map(|k| if k % 6 > 0 { above(k) } else { 0.0 })
+                .collect();
+            let lower = |y: &[f64], out: &mut [f64]| {
+                jac.apply(y, out);
+                for k in 0..12 {
+                    if k % 6 > 0 {
+                        out[k] -= upper[k] * y[k - 1];
+                    }
+                }
+            };
+            let active = vec![true; 12];
+            let mut y = vec![0.0; 12];
+            let mut lower_dp = vec![0.0; 12];
+            lower(&dp, &mut lower_dp);
+            jac.solve_restricted(0.0, &active, &lower_dp, &mut y);
+            for k in 0..12 {
+                assert!((y[k] - dp[k]).abs() < 1e-9, "{k}: {} {}", y[k], dp[k]);
             }
         }
     }

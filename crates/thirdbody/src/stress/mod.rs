@@ -411,15 +411,16 @@ fn stresses_in_units(
 }
 
 impl Solution {
-    /// Subsurface stresses of this solution's pressure on the body it was solved on.
+    /// Subsurface stresses of this solution's pressure (each cell's mean,
+    /// [`Solution::mean_pressure`]) on the body it was solved on.
     pub fn stresses(&self, section: &Section) -> Result<StressField> {
-        stresses(&self.grid, &self.pressure, &self.body, section)
+        stresses(&self.grid, &self.mean_pressure(), &self.body, section)
     }
 
     /// The stresses and their summary that `request` asks for, on the body this
     /// solution was solved on.
     pub fn stress_results(&self, request: &StressRequest) -> Result<StressResults> {
-        request.compute(&self.body, &self.grid, &self.pressure)
+        request.compute(&self.body, &self.grid, &self.mean_pressure())
     }
 
     /// As [`Solution::stress_results`], reporting to `observer` (from any thread):
@@ -429,6 +430,6 @@ impl Solution {
         request: &StressRequest,
         observer: &(dyn Fn(StressProgress<'_>) + Sync),
     ) -> Result<StressResults> {
-        request.compute_observed(&self.body, &self.grid, &self.pressure, observer)
+        request.compute_observed(&self.body, &self.grid, &self.mean_pressure(), observer)
     }
 }

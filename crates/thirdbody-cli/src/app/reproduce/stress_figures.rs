@@ -24,7 +24,7 @@ fn sections(case: &Case, solution: &Solution, kinds: &[SectionKind]) -> Result<S
         sections: Some(kinds.to_vec()),
         ..StressRequest::default()
     };
-    Ok(request.compute(&case.body, &solution.grid, &solution.pressure)?)
+    Ok(request.compute(&case.body, &solution.grid, &solution.mean_pressure())?)
 }
 
 /// The `kinds` sections of each case's solution.
