@@ -4,7 +4,8 @@
 //!
 //! Every figure has a title, labelled axes and, for maps, a labelled colour bar; maps of
 //! the surface keep equal scales on x and y. The format follows the file extension:
-//! `.png` (raster, RGB) or `.svg` (vector; the colour raster is embedded as PNG). Text
+//! `.svg` (vector; the colour raster is embedded as PNG) or `.png` (that SVG rasterised,
+//! RGB, anti-aliased lines and kerned text, so both formats show one picture). Text
 //! uses the embedded DejaVu Sans, so no system font is needed. Files are written
 //! atomically: rendered to `<stem>.tmp-<pid>.<ext>` next to the target, then renamed.
 //!

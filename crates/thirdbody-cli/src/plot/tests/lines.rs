@@ -220,3 +220,48 @@ fn log_ticks_are_decades_then_two_and_five_times_them_then_any() {
         "{k:?}"
     );
 }
+
+#[test]
+fn png_lines_are_anti_aliased() {
+    // One steep and one shallow straight line: drawn anti-aliased, their edges hold
+    // intermediate shades between the line colour (tab10 blue) and the white
+    // background; a line drawn in whole pixels has only the two.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("aa.png");
+    let series = [Series {
+        label: String::new(),
+        x: (0..=100).map(|k| k as f64).collect(),
+        y: (0..=100)
+            .map(|k| {
+                if k < 50 {
+                    3.0 * k as f64
+                } else {
+                    150.0 + 0.2 * (k - 50) as f64
+                }
+            })
+            .collect(),
+        dashed: false,
+    }];
+    line_plot(&path, &series, "Line", "x", "y", false).unwrap();
+    let img = decode(&path);
+    let blue = [31.0, 119.0, 180.0];
+    // A pixel that is white * (1 - a) + blue * a with 0.15 < a < 0.85 (within 3 levels).
+    let shade = |p: [u8; 3]| {
+        let a = (255.0 - p[0] as f64) / (255.0 - blue[0]);
+        (0.15..0.85).contains(&a)
+            && (0..3).all(|c| {
+                let want = 255.0 * (1.0 - a) + blue[c] * a;
+                (p[c] as f64 - want).abs() <= 3.0
+            })
+    };
+    let full = img
+        .pixels()
+        .filter(|p| close(p.0, [31, 119, 180], 3))
+        .count();
+    let partial = img.pixels().filter(|p| shade(p.0)).count();
+    assert!(full > 200, "{full} pixels in the line colour");
+    assert!(
+        partial * 2 > full,
+        "{partial} edge pixels of intermediate shade beside {full} of the line colour"
+    );
+}
