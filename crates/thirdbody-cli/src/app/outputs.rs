@@ -184,7 +184,7 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
         })?;
     }
     if let Some(results) = o.stress {
-        stress_outputs::write_stress(&mut out, results, case.units, o.formats)?;
+        stress_outputs::write_stress(&mut out, results, case, o.formats)?;
     }
 
     let l = units::labels(case.units);

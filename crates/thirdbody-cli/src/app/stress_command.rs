@@ -195,7 +195,7 @@ pub fn run(args: &StressArgs) -> Result<()> {
     stress_outputs::write_stress(
         &mut out,
         &results,
-        file.case.units,
+        &file.case,
         args.format.unwrap_or_default(),
     )?;
     summary["stress"] = stress_outputs::summary_json(&results)?;

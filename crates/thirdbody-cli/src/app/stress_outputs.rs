@@ -19,7 +19,7 @@ use ndarray::Array4;
 use serde_json::Value;
 use thirdbody::report::StressReport;
 use thirdbody::stress::{Side, StressField, StressResults};
-use thirdbody::Units;
+use thirdbody::Case;
 
 use crate::app::outputs::Formats;
 use crate::app::section::{self, SectionId, SectionLabels};
@@ -38,14 +38,15 @@ pub fn summary_json(results: &StressResults) -> Result<Value> {
     Ok(serde_json::to_value(StressReport::of(results))?)
 }
 
-/// Stages every stress file into `out`.
+/// Stages every stress file of `case`'s `results` into `out`.
 pub fn write_stress(
     out: &mut Staging,
     results: &StressResults,
-    units: Units,
+    case: &Case,
     formats: Formats,
 ) -> Result<()> {
-    let l = crate::units::labels(units);
+    let l = crate::units::labels(case.units);
+    let interfaces = case.body.model().interface_depths();
     let sections = section::sections(results)?;
     for &(id, f) in &sections {
         let name = id.name();
@@ -82,6 +83,7 @@ pub fn write_stress(
                         l.depth,
                         &format!("{what} {}", l.stress_scale),
                         10,
+                        &interfaces,
                     )
                 })?;
             }

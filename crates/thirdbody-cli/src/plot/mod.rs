@@ -184,6 +184,7 @@ pub fn field_map(
         outline,
         legend_corner,
         marker: None,
+        interfaces: Vec::new(),
     };
     output::write_figure(path, &figure)
 }
@@ -320,19 +321,17 @@ pub fn section_map(
     z_label: &str,
     colour_label: &str,
     contours: usize,
+    interfaces: &[f64],
 ) -> Result<()> {
     check_axis("section xs", xs)?;
+    check_finite("section interfaces", interfaces)?;
     check_axis("section zs", zs)?;
     let (nx, nz) = (xs.len(), zs.len());
     check_len("section field", field.len(), nx * nz, "xs.len() * zs.len()")?;
     check_finite("section field", field)?;
     let (lo, hi) = min_max(field);
     let levels = drawn_levels(lo, hi, contours);
-    let width = {
-        let cols = Axis::from_centres(xs);
-        cols.last_edge - cols.first_edge
-    };
-    let nz = shown_depths(zs, nx, field, &levels, map::SECTION_FULL_RATIO * width);
+    let nz = shown_depths(zs, nx, field, &levels, interfaces);
     let (zs, field) = (&zs[..nz], &field[..nz * nx]);
     let (title, x_label, z_label, colour_label) = (
         pretty(title),
@@ -368,7 +367,7 @@ pub fn section_map(
         text: format!("{} at ({}, {})", short(extreme), short(x_max), short(z_max)),
     });
 
-    let ratio = (rows.last_edge - rows.first_edge) / (cols.last_edge - cols.first_edge);
+    let z_shown = -rows.first_edge;
     let figure = MapFigure {
         title: &title,
         x_label: &x_label,
@@ -379,11 +378,16 @@ pub fn section_map(
         rows,
         values,
         y_negated: true,
-        equal_aspect: (0.2..=5.0).contains(&ratio),
+        equal_aspect: true,
         lines,
         outline: None,
         legend_corner: Corner::UpperRight,
         marker,
+        interfaces: interfaces
+            .iter()
+            .filter(|&&z| z > zs[0] && z < z_shown)
+            .map(|z| -z)
+            .collect(),
     };
     output::write_figure(path, &figure)
 }
@@ -441,15 +445,15 @@ fn drawn_levels(lo: f64, hi: f64, contours: usize) -> Vec<f64> {
 }
 
 /// How many of the first depth rows of a section (`zs.len()` rows of `nx` values) to
-/// show. The deepest row that matters is the deepest where the field reaches one of the
-/// drawn contour `levels` (every drawn line is then in the picture; without levels,
-/// where its magnitude reaches [`LINE_FLOOR`] of the peak), or a deeper maximum over the
-/// rows of the field's positive or negative part that reaches [`FADED`] of the peak
-/// (e.g. the tension at a coating's interface). Below it: a margin of a tenth of the
-/// depth down to there, and at least two rows; and rows spanning (edge to edge) at least
-/// `min_extent`, as far as there are rows, so that an equal-scale panel is filled with
-/// data rather than padded.
-fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], min_extent: f64) -> usize {
+/// show: where the field lives, and the material `interfaces` (depths). The deepest row
+/// that matters is the deepest where the field reaches one of the drawn contour
+/// `levels` (every drawn line is then in the picture; without levels, where its
+/// magnitude reaches [`LINE_FLOOR`] of the peak), a deeper maximum over the rows of the
+/// field's positive or negative part that reaches [`FADED`] of the peak (e.g. the
+/// tension at a coating's interface), or the first row at or below the deepest
+/// interface. Below it: a margin of a tenth of the depth down to there, and at least
+/// two rows.
+fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], interfaces: &[f64]) -> usize {
     let nz = zs.len();
     let row = |k: usize| &field[k * nx..(k + 1) * nx];
     let row_hi: Vec<f64> = (0..nz)
@@ -487,15 +491,13 @@ fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], min_extent
             deepest = k;
         }
     }
+    if let Some(z) = interfaces.iter().copied().reduce(f64::max) {
+        let below = zs.iter().position(|&d| d >= z).unwrap_or(nz - 1);
+        deepest = deepest.max(below);
+    }
     let z_end = zs[deepest] + MARGIN * (zs[deepest] - zs[0]);
     let by_margin = zs.iter().take_while(|&&z| z <= z_end).count();
-    let filling = (2..=nz)
-        .find(|&n| {
-            let rows = Axis::from_centres(&zs[..n]);
-            rows.last_edge - rows.first_edge >= min_extent
-        })
-        .unwrap_or(nz);
-    by_margin.max(deepest + 3).max(filling).min(nz)
+    by_margin.max(deepest + 3).min(nz)
 }
 
 /// Margin below the deepest row that matters, as a fraction of its depth.

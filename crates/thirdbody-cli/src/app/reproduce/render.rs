@@ -96,12 +96,13 @@ pub fn sigma_x_row(f: &StressField, label: String, dashed: bool) -> Series {
     }
 }
 
-/// Stages the colour map (PNG + SVG) of `values` on the XZ section `f` and its data
-/// as `stem.csv` with columns `x', z', name`.
+/// Stages the colour map (PNG + SVG) of `values` on the XZ section `f` of a body with
+/// material interfaces at depths `interfaces`, and its data as `stem.csv` with columns
+/// `x', z', name`.
 pub fn xz_map(
     files: &mut FigureFiles,
     stem: &str,
-    f: &StressField,
+    (f, interfaces): (&StressField, &[f64]),
     values: &[f64],
     name: &str,
     title: &str,
@@ -117,6 +118,7 @@ pub fn xz_map(
             L.depth,
             &stress_label(name),
             10,
+            interfaces,
         )
     })?;
     let rows: Vec<Vec<f64>> = (0..f.zs.len())

@@ -113,7 +113,7 @@ pub fn fig10(
         xz_map(
             files,
             &format!("fig10{panel}_tau1"),
-            f,
+            (f, &[]),
             &tau1,
             "tau1",
             &format!("tau1, delta = {d} (Fig. 10{panel})"),
@@ -189,7 +189,7 @@ pub fn fig11(
         xz_map(
             files,
             &format!("fig11{panel}_sigma_x"),
-            f,
+            (f, &p.nonlinear.body.model().interface_depths()),
             &f.components[0],
             "sigma_x",
             &format!("sigma_x, h1' = {h} (Fig. 11{panel})"),

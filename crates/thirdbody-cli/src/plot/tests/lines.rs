@@ -38,6 +38,7 @@ fn svg_files_carry_the_texts_and_the_raster() {
         "z [mm]",
         "Sxx [MPa]",
         3,
+        &[],
     )
     .unwrap();
     let s = svg(&path);
