@@ -38,14 +38,14 @@ struct Drawn {
     series: Vec<(SeriesKey, Vec<(f64, f64)>)>,
 }
 
-fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
+pub(super) fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
     let key = format!(" {name}=\"");
     let start = tag.find(&key)? + key.len();
     let end = start + tag[start..].find('"')?;
     Some(&tag[start..end])
 }
 
-fn num(tag: &str, name: &str) -> f64 {
+pub(super) fn num(tag: &str, name: &str) -> f64 {
     attr(tag, name)
         .and_then(|v| v.parse().ok())
         .unwrap_or_else(|| panic!("attribute {name} in {tag}"))

@@ -156,25 +156,21 @@ fn a_log_y_axis_is_ticked_at_decades_and_hollow_points_are_explained() {
         .count();
     assert_eq!(rings, 3 + 1, "{svg}");
     assert!(svg.contains("hollow: result carries a warning"));
-    // The y axis (mu from 2e-7 to 0.02) is labelled at its decades only, in the x
-    // axis's style; "1e-4" and "0.001" are also x ticks.
-    let texts: Vec<&str> = svg
-        .split("<text")
-        .skip(1)
-        .filter_map(|t| t.split_once('>').map(|(_, rest)| rest))
-        .map(|t| t.split('<').next().unwrap().trim())
-        .collect();
-    let count = |label: &str| texts.iter().filter(|t| **t == label).count();
-    for (label, n) in [
-        ("1e-6", 1),
-        ("1e-5", 1),
-        ("1e-4", 2),
-        ("0.001", 2),
-        ("0.01", 2),
+    // The y axis (mu from 2e-7 to 0.02) is labelled at its decades only, as powers of
+    // ten; the x axis (1e-4 to 10) too.
+    let (x_ticks, y_ticks) = tick_labels(&svg);
+    for (label, axis) in [
+        ("10\u{207b}\u{2076}", &y_ticks),
+        ("10\u{207b}\u{2075}", &y_ticks),
+        ("10\u{207b}\u{2074}", &y_ticks),
+        ("10\u{207b}\u{b3}", &y_ticks),
+        ("10\u{207b}\u{b2}", &y_ticks),
+        ("10\u{207b}\u{2074}", &x_ticks),
+        ("10\u{b9}", &x_ticks),
     ] {
-        assert_eq!(count(label), n, "tick {label} in {texts:?}");
+        assert!(axis.iter().any(|t| t == label), "tick {label} in {axis:?}");
     }
-    assert_eq!(count("2e-5") + count("5e-5"), 0, "{texts:?}");
+    assert!(!y_ticks.iter().any(|t| t.contains('\u{d7}')), "{y_ticks:?}");
     assert!(
         super::layout::layout_defects(&path).is_empty(),
         "{:?}",
@@ -264,5 +260,115 @@ fn png_lines_are_anti_aliased() {
     assert!(
         partial * 2 > full,
         "{partial} edge pixels of intermediate shade beside {full} of the line colour"
+    );
+}
+
+/// The tick labels of a line plot's SVG: (x axis, y axis). Tick labels are the texts in
+/// the tick font; those of x are centred under their tick, those of y end at it.
+fn tick_labels(svg: &str) -> (Vec<String>, Vec<String>) {
+    let size = format!("font-size=\"{}\"", crate::plot::output::TICK_SIZE / 1.24);
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for piece in svg.split("<text").skip(1) {
+        let Some((tag, rest)) = piece.split_once('>') else {
+            continue;
+        };
+        let text = rest.split('<').next().unwrap().trim().to_string();
+        if !tag.contains(&size) || tag.contains("transform") || text.is_empty() {
+            continue;
+        }
+        if tag.contains("text-anchor=\"middle\"") && tag.contains("dy=\"0.76em\"") {
+            x.push(text);
+        } else if tag.contains("text-anchor=\"end\"") && tag.contains("dy=\"0.5ex\"") {
+            y.push(text);
+        }
+    }
+    (x, y)
+}
+
+/// Whether every label of an axis is written one way: all plain decimals or all
+/// powers of ten.
+fn one_format(labels: &[String]) -> bool {
+    let power = |t: &String| {
+        t.contains("10")
+            && t.chars().any(|c| {
+                "\u{207b}\u{2070}\u{b9}\u{b2}\u{b3}\u{2074}\u{2075}\u{2076}\u{2077}\u{2078}\u{2079}"
+                    .contains(c)
+            })
+    };
+    let plain = |t: &String| t.parse::<f64>().is_ok();
+    labels.iter().all(plain) || labels.iter().all(power)
+}
+
+#[test]
+fn log_axes_have_one_label_format_enough_labels_and_a_sparse_minor_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let curve = |lo: f64, hi: f64| {
+        let x: Vec<f64> = (0..8)
+            .map(|k| lo * (hi / lo).powf(k as f64 / 7.0))
+            .collect();
+        let y: Vec<f64> = x.iter().map(|v| 0.01 + v.sqrt()).collect();
+        vec![Series {
+            label: "curve".into(),
+            x,
+            y,
+            dashed: false,
+        }]
+    };
+    // Paper Figs. 8 (V' from 1e-4 to 0.1), 6 (C' from 0.002 to 0.2), 7 (h1' from 0.001
+    // to 0.05), and a sweep over six decades with a logarithmic mu.
+    let cases = [
+        ("fig08.svg", curve(1e-4, 0.1), false),
+        ("fig06.svg", curve(0.002, 0.2), false),
+        ("fig07.svg", curve(0.001, 0.05), false),
+        ("wide.svg", curve(1e-6, 1.0), true),
+    ];
+    for (name, series, log_y) in cases {
+        let path = dir.path().join(name);
+        let options = LineOptions {
+            log_x: true,
+            log_y,
+            ..LineOptions::default()
+        };
+        line_plot_with(&path, &series, "Sweep", "V'", "mu", &options).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let (x, y) = tick_labels(&svg);
+        assert!(x.len() >= 3, "{name}: x labels {x:?}");
+        assert!(one_format(&x), "{name}: x labels {x:?}");
+        if log_y {
+            assert!(y.len() >= 3, "{name}: y labels {y:?}");
+            assert!(one_format(&y), "{name}: y labels {y:?}");
+        }
+        // Minor grid lines (light grey) never closer than MINOR_GAP (1 px of rounding).
+        let mut vertical = Vec::new();
+        let mut horizontal = Vec::new();
+        for piece in svg.split("<line").skip(1) {
+            let tag = format!(" {}", piece.split('>').next().unwrap());
+            if super::layout::attr(&tag, "stroke") != Some("#EBEBEB") {
+                continue;
+            }
+            let n = |k: &str| super::layout::num(&tag, k);
+            if n("x1") == n("x2") {
+                vertical.push(n("x1"));
+            } else {
+                horizontal.push(n("y1"));
+            }
+        }
+        for (axis, mut lines) in [("vertical", vertical), ("horizontal", horizontal)] {
+            lines.sort_by(f64::total_cmp);
+            lines.dedup();
+            assert!(lines.len() >= 3, "{name}: {axis} minor lines {lines:?}");
+            let gap = lines
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                gap >= crate::plot::line::MINOR_GAP - 1.0,
+                "{name}: {axis} minor lines {gap} px apart: {lines:?}"
+            );
+        }
+    }
+    assert_eq!(
+        tick_labels(&std::fs::read_to_string(dir.path().join("fig06.svg")).unwrap()).0,
+        ["0.002", "0.005", "0.01", "0.02", "0.05", "0.1", "0.2"]
     );
 }
