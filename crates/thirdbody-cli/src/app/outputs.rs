@@ -184,7 +184,7 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
         })?;
     }
     if let Some(results) = o.stress {
-        stress_outputs::write_stress(&mut out, results, case, o.formats)?;
+        stress_outputs::write_stress(&mut out, results, case, contact_x(solution), o.formats)?;
     }
 
     let l = units::labels(case.units);
@@ -214,6 +214,7 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
             "Pressure along x through the centre",
             l.x,
             l.pressure,
+            contact_x(solution),
         )
     })?;
     if let Some(c) = &solution.compliance {
@@ -231,6 +232,12 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
         })?;
     }
     out.commit_replacing(is_output_name)
+}
+
+/// The contact's extent along x (cell edges), if there is a contact.
+pub fn contact_x(solution: &Solution) -> Option<(f64, f64)> {
+    let s = solution.summary();
+    (s.contact_area > 0.0).then_some((s.contact_x_min, s.contact_x_max))
 }
 
 /// The row whose centre is nearest y = 0 (the first of two equally near).

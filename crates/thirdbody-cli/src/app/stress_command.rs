@@ -196,6 +196,7 @@ pub fn run(args: &StressArgs) -> Result<()> {
         &mut out,
         &results,
         &file.case,
+        outputs::contact_x(&solution),
         args.format.unwrap_or_default(),
     )?;
     summary["stress"] = stress_outputs::summary_json(&results)?;

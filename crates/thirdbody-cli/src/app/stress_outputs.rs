@@ -38,11 +38,14 @@ pub fn summary_json(results: &StressResults) -> Result<Value> {
     Ok(serde_json::to_value(StressReport::of(results))?)
 }
 
-/// Stages every stress file of `case`'s `results` into `out`.
+/// Stages every stress file of `case`'s `results` into `out`; `contact`: the contact's
+/// extent along x, which the sigma_x profile of a homogeneous body frames (a coated
+/// body's interface stresses reach beyond it).
 pub fn write_stress(
     out: &mut Staging,
     results: &StressResults,
     case: &Case,
+    contact: Option<(f64, f64)>,
     formats: Formats,
 ) -> Result<()> {
     let l = crate::units::labels(case.units);
@@ -117,6 +120,7 @@ pub fn write_stress(
                 &format!("sigma_x along x on the cell row y = {}", short(row_y)),
                 l.x,
                 &format!("sigma_x {}", l.stress_scale),
+                contact.filter(|_| interfaces.is_empty()),
             )
         })?;
     }

@@ -220,14 +220,43 @@ pub fn line_plot_with(
 }
 
 /// [`line_plot`] of profiles along the sliding direction x (linear x axis), with the note
-/// "slider moves +x →" under the plot.
+/// "slider moves +x →" under the plot. `contact`: the contact's extent along x
+/// (`x_min`, `x_max`); the plot then shows it and a margin of [`PROFILE_MARGIN`] of its
+/// length on each side (as far as the series reach), not the whole window, where the
+/// pressure is mostly zero.
 pub fn profile_plot(
     path: &Path,
     series: &[Series],
     title: &str,
     x_label: &str,
     y_label: &str,
+    contact: Option<(f64, f64)>,
 ) -> Result<()> {
+    let framed: Vec<Series>;
+    let series = match contact {
+        Some((lo, hi)) if lo.is_finite() && hi.is_finite() && hi > lo => {
+            let margin = PROFILE_MARGIN * (hi - lo);
+            let shown = (lo - margin)..=(hi + margin);
+            framed = series
+                .iter()
+                .map(|s| {
+                    let (x, y) =
+                        s.x.iter()
+                            .zip(&s.y)
+                            .filter(|(x, _)| shown.contains(x))
+                            .unzip();
+                    Series { x, y, ..s.clone() }
+                })
+                .filter(|s: &Series| !s.x.is_empty())
+                .collect();
+            if framed.is_empty() {
+                series
+            } else {
+                &framed
+            }
+        }
+        _ => series,
+    };
     line_figure(
         path,
         series,
@@ -238,6 +267,10 @@ pub fn profile_plot(
         true,
     )
 }
+
+/// Margin beyond the contact on each side of a profile, as a fraction of the contact's
+/// length.
+pub const PROFILE_MARGIN: f64 = 0.15;
 
 fn line_figure(
     path: &Path,

@@ -220,14 +220,15 @@ pub(crate) fn draw_sliding_note<DB: DrawingBackend>(
 }
 
 /// `text` with the ASCII spellings of the paper's symbols written as the symbols the
-/// embedded font draws: whole words `mu`, `delta`, `tau1`, `sigma_x`, ... become μ, δ,
-/// τ₁, σₓ (subscripts where Unicode has the glyph, else plain: `sigma_y` is σy), and
+/// embedded font draws: whole words `mu`, `mu_linear`, `delta`, `tau1`, `sigma_x`, ...
+/// become μ, μ(linear), δ, τ₁, σₓ (subscripts where Unicode has the glyph, else plain: `sigma_y` is σy), and
 /// `E2`, `h1`, `p0`, `C0` take subscript digits; an apostrophe right after a word (the
 /// dimensionless mark, `x'`) becomes the prime ′. Other text is unchanged.
 pub(crate) fn pretty(text: &str) -> String {
     fn symbol(word: &str) -> Option<&'static str> {
         Some(match word {
             "mu" => "\u{3bc}",
+            "mu_linear" => "\u{3bc}(linear)",
             "delta" => "\u{3b4}",
             "tau1" => "\u{3c4}\u{2081}",
             "tau2" => "\u{3c4}\u{2082}",

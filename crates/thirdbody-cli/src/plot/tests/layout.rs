@@ -283,6 +283,7 @@ fn no_plot_kind_overlaps_texts_or_covers_extremes_with_its_legend() {
         "sigma_x, h1' = 0.02 (Fig. 12b)",
         "x'",
         "sigma_x / E2",
+        None,
     )
     .unwrap();
     line_plot(
@@ -317,6 +318,7 @@ fn no_plot_kind_overlaps_texts_or_covers_extremes_with_its_legend() {
         "Pressure along x through the centre",
         "x'",
         "p'",
+        None,
     )
     .unwrap();
 

@@ -4,7 +4,9 @@ use std::path::Path;
 
 use super::*;
 use crate::plot::line::log_keys;
-use crate::plot::{line_plot, line_plot_with, section_map, LineOptions, Series};
+use crate::plot::{
+    line_plot, line_plot_with, profile_plot, section_map, LineOptions, Series, PROFILE_MARGIN,
+};
 
 #[test]
 fn svg_files_carry_the_texts_and_the_raster() {
@@ -371,4 +373,49 @@ fn log_axes_have_one_label_format_enough_labels_and_a_sparse_minor_grid() {
         tick_labels(&std::fs::read_to_string(dir.path().join("fig06.svg")).unwrap()).0,
         ["0.002", "0.005", "0.01", "0.02", "0.05", "0.1", "0.2"]
     );
+}
+
+#[test]
+fn a_profile_frames_the_contact_with_a_margin() {
+    // A pressure profile on a window from -1 to 3, in contact from 0 to 1.
+    let dir = tempfile::tempdir().unwrap();
+    let x: Vec<f64> = (0..400).map(|i| -1.0 + (i as f64 + 0.5) * 0.01).collect();
+    let p: Vec<f64> = x
+        .iter()
+        .map(|&x| {
+            if (0.0..1.0).contains(&x) {
+                (x * (1.0 - x)).sqrt()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let series = [Series {
+        label: String::new(),
+        x,
+        y: p,
+        dashed: false,
+    }];
+    let ticks = |contact: Option<(f64, f64)>| {
+        let path = dir.path().join("p.svg");
+        profile_plot(&path, &series, "Pressure", "x'", "p'", contact).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let values: Vec<f64> = tick_labels(&svg)
+            .0
+            .iter()
+            .map(|t| t.parse().unwrap())
+            .collect();
+        values
+    };
+    let framed = ticks(Some((0.0, 1.0)));
+    let whole = ticks(None);
+    let m = PROFILE_MARGIN;
+    assert!(
+        framed
+            .iter()
+            .all(|&v| v >= -m - 1e-9 && v <= 1.0 + m + 1e-9),
+        "{framed:?}"
+    );
+    assert!(framed.contains(&0.0) && framed.contains(&1.0), "{framed:?}");
+    assert!(whole.iter().any(|&v| v >= 2.0), "{whole:?}");
 }
