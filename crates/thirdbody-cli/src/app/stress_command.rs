@@ -196,7 +196,10 @@ pub fn run(args: &StressArgs) -> Result<()> {
         &mut out,
         &results,
         &file.case,
-        outputs::contact_x(&solution),
+        (
+            outputs::contact_x(&solution),
+            outputs::plot_units(&file.case, &solution),
+        ),
         args.format.unwrap_or_default(),
     )?;
     summary["stress"] = stress_outputs::summary_json(&results)?;
