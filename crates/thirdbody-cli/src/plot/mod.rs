@@ -326,11 +326,13 @@ fn line_figure(
 
 /// Colour map of a vertical section (e.g. a stress component in the XZ plane): `xs`
 /// (len nx), `zs` (len nz, depth, drawn increasing DOWNWARD), `field[k*nx+i]` at
-/// `(xs[i], zs[k])`, both strictly increasing; colour bar; contour lines (below), and the
-/// extreme (the value of largest magnitude) marked by a small cross labelled with its
-/// value and position. Diverging colour map when the field changes sign, sequential
-/// otherwise. Equal scales on x and z unless one extent is more than five times the
-/// other.
+/// `(xs[i], zs[k])`, both strictly increasing; colour bar; contour lines (below); the
+/// material `interfaces` (depths, in the units of `zs`) as dashed lines; and the extreme
+/// (the value of largest magnitude) marked by a small cross, its value and position
+/// written in a strip above the picture (no label covers the field). Diverging colour
+/// map when the field changes sign, sequential otherwise. Equal scales on x and z unless
+/// the shown depth is under about a third of the width (or the width under a third of
+/// the depth): the shorter extent is then stretched, never padded.
 ///
 /// Contour lines: `contours` evenly spaced levels dividing the field's range into
 /// `contours + 1` equal parts (0 for none), of which only those whose magnitude reaches
@@ -339,10 +341,10 @@ fn line_figure(
 ///
 /// Depths shown (see `shown_depths`): from the first row down to the deepest row where
 /// the field reaches a drawn level, or a depth of [`LINE_FLOOR`] of the peak without
-/// lines, and to any deeper maximum (of either sign, over the rows) that reaches
-/// [`FADED`] of the peak; then a margin of a tenth of that depth (at least two rows),
-/// and at least as deep as fills a panel drawn at equal scales. Deeper rows are left
-/// out of the picture (the caller's data files keep them).
+/// lines, to any deeper maximum (of either sign, over the rows) that reaches [`FADED`]
+/// of the peak, and to the deepest interface; then a margin of a tenth of that depth
+/// (at least two rows). Deeper rows are left out of the picture (the caller's data
+/// files keep them).
 #[allow(clippy::too_many_arguments)]
 pub fn section_map(
     path: &Path,

@@ -230,6 +230,8 @@ pub(crate) fn pretty(text: &str) -> String {
             "mu" => "\u{3bc}",
             "mu_linear" => "\u{3bc}(linear)",
             "delta" => "\u{3b4}",
+            "nu1" => "\u{3bd}\u{2081}",
+            "nu2" => "\u{3bd}\u{2082}",
             "tau1" => "\u{3c4}\u{2081}",
             "tau2" => "\u{3c4}\u{2082}",
             "tau3" => "\u{3c4}\u{2083}",
