@@ -203,10 +203,12 @@ fn power_of_ten(v: f64) -> String {
             d => char::from_u32(0x2070 + d.to_digit(10).unwrap_or(0)).unwrap_or(d),
         })
         .collect();
-    match mantissa {
-        m if m == 1.0 => format!("10{superscript}"),
-        m if m == -1.0 => format!("\u{2212}10{superscript}"),
-        m => format!("{m}\u{d7}10{superscript}"),
+    if mantissa == 1.0 {
+        format!("10{superscript}")
+    } else if mantissa == -1.0 {
+        format!("\u{2212}10{superscript}")
+    } else {
+        format!("{mantissa}\u{d7}10{superscript}")
     }
 }
 

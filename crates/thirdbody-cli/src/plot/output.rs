@@ -221,9 +221,10 @@ pub(crate) fn draw_sliding_note<DB: DrawingBackend>(
 
 /// `text` with the ASCII spellings of the paper's symbols written as the symbols the
 /// embedded font draws: whole words `mu`, `mu_linear`, `delta`, `tau1`, `sigma_x`, ...
-/// become μ, μ(linear), δ, τ₁, σₓ (subscripts where Unicode has the glyph, else plain: `sigma_y` is σy), and
-/// `E2`, `h1`, `p0`, `C0` take subscript digits; an apostrophe right after a word (the
-/// dimensionless mark, `x'`) becomes the prime ′. Other text is unchanged.
+/// become μ, μ(linear), δ, τ₁, σₓ (subscripts where Unicode has the glyph, else plain:
+/// `sigma_y` is σy), and `E2`, `h1`, `p0`, `C0`, `nu1` take subscript digits; an
+/// apostrophe right after a word (the dimensionless mark, `x'`) becomes the prime ′.
+/// Other text is unchanged.
 pub(crate) fn pretty(text: &str) -> String {
     fn symbol(word: &str) -> Option<&'static str> {
         Some(match word {
