@@ -419,3 +419,44 @@ fn a_profile_frames_the_contact_with_a_margin() {
     assert!(framed.contains(&0.0) && framed.contains(&1.0), "{framed:?}");
     assert!(whole.iter().any(|&v| v >= 2.0), "{whole:?}");
 }
+
+#[test]
+fn digits_are_evenly_spaced() {
+    // A title of ten equal digits: each glyph's centre of ink lies one advance after the
+    // previous, to a fraction of a pixel. Glyphs placed at whole pixels (an advance of
+    // 12.3 px drawn as 12 or 13) are off by up to half a pixel.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("digits.png");
+    line_plot(&path, &two_series(), "0000000000", "x", "y", false).unwrap();
+    let img = decode(&path);
+    let strip = crate::plot::output::TITLE_STRIP;
+    let ink: Vec<f64> = (0..img.width())
+        .map(|x| {
+            (0..strip)
+                .map(|y| 255.0 - img.get_pixel(x, y).0[0] as f64)
+                .sum()
+        })
+        .collect();
+    // Glyphs: runs of columns with ink, and the centre of ink of each.
+    let mut centres = Vec::new();
+    let mut x = 0;
+    while x < ink.len() {
+        if ink[x] > 1.0 {
+            let start = x;
+            while x < ink.len() && ink[x] > 1.0 {
+                x += 1;
+            }
+            let mass: f64 = ink[start..x].iter().sum();
+            let moment: f64 = (start..x).map(|k| k as f64 * ink[k]).sum();
+            centres.push(moment / mass);
+        }
+        x += 1;
+    }
+    assert_eq!(centres.len(), 10, "{centres:?}");
+    let steps: Vec<f64> = centres.windows(2).map(|w| w[1] - w[0]).collect();
+    let mean = steps.iter().sum::<f64>() / steps.len() as f64;
+    assert!(
+        steps.iter().all(|s| (s - mean).abs() < 0.2),
+        "digit spacing {steps:?}"
+    );
+}
