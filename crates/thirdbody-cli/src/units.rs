@@ -69,6 +69,130 @@ pub const fn labels(units: Units) -> &'static Labels {
     }
 }
 
+/// How a case's plots write lengths and stresses: the paper's primed dimensionless
+/// variables as they are, or SI values in a decimal multiple of the metre and the
+/// pascal chosen for the figure (µm for a contact 300 µm long, MPa for 100 MPa), so that
+/// tick labels read as plain numbers. The data files keep the case's own units.
+#[derive(Debug, Clone)]
+pub struct PlotUnits {
+    labels: &'static Labels,
+    /// Plotted length = `length.0` times the case's; `length.1` the unit's symbol.
+    length: (f64, &'static str),
+    /// Plotted stress = `stress.0` times the case's; `stress.1` the unit's symbol.
+    stress: (f64, &'static str),
+}
+
+impl PlotUnits {
+    /// The plot units of a case in `units` whose figures show lengths up to about
+    /// `length` and stresses up to about `stress` (magnitudes in the case's units).
+    pub fn new(units: Units, length: f64, stress: f64) -> Self {
+        let labels = labels(units);
+        match units {
+            Units::Dimensionless => PlotUnits {
+                labels,
+                length: (1.0, ""),
+                stress: (1.0, ""),
+            },
+            Units::Si => PlotUnits {
+                labels,
+                length: prefixed(
+                    length,
+                    &[(1e-9, "nm"), (1e-6, "\u{b5}m"), (1e-3, "mm"), (1.0, "m")],
+                ),
+                stress: prefixed(
+                    stress,
+                    &[(1.0, "Pa"), (1e3, "kPa"), (1e6, "MPa"), (1e9, "GPa")],
+                ),
+            },
+        }
+    }
+
+    fn si(&self) -> bool {
+        !self.length.1.is_empty()
+    }
+
+    /// A length in plot units.
+    pub fn length(&self, v: f64) -> f64 {
+        v * self.length.0
+    }
+
+    /// A stress in plot units.
+    pub fn stress(&self, v: f64) -> f64 {
+        v * self.stress.0
+    }
+
+    /// Axis label of x.
+    pub fn x(&self) -> String {
+        self.axis(self.labels.x, "x", self.length.1)
+    }
+
+    /// Axis label of y.
+    pub fn y(&self) -> String {
+        self.axis(self.labels.y, "y", self.length.1)
+    }
+
+    /// Axis label of the depth.
+    pub fn depth(&self) -> String {
+        if self.si() {
+            format!("z ({}, depth)", self.length.1)
+        } else {
+            self.labels.depth.to_string()
+        }
+    }
+
+    /// Label of the pressure.
+    pub fn pressure(&self) -> String {
+        self.axis(self.labels.pressure, "p", self.stress.1)
+    }
+
+    /// Label of a stress component `name` (`sigma_x / E2`, `sigma_x (MPa)`).
+    pub fn stress_label(&self, name: &str) -> String {
+        if self.si() {
+            format!("{name} ({})", self.stress.1)
+        } else {
+            format!("{name} {}", self.labels.stress_scale)
+        }
+    }
+
+    /// A length value with its unit, 4 significant digits (`y = -2.703 µm`).
+    pub fn length_text(&self, v: f64) -> String {
+        let v = self.length(v);
+        let text = if v == 0.0 {
+            "0".to_string()
+        } else if (1e-3..1e4).contains(&v.abs()) {
+            let decimals = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
+            format!("{v:.decimals$}")
+        } else {
+            format!("{v:.3e}")
+        };
+        if self.si() {
+            format!("{text} {}", self.length.1)
+        } else {
+            text
+        }
+    }
+
+    fn axis(&self, dimensionless: &str, symbol: &str, unit: &str) -> String {
+        if self.si() {
+            format!("{symbol} ({unit})")
+        } else {
+            dimensionless.to_string()
+        }
+    }
+}
+
+/// Of `units` (factor of the base unit, symbol; increasing), the largest whose factor is
+/// at most `magnitude` (the first for smaller or no magnitude), as (multiplier of values
+/// in the base unit, symbol).
+fn prefixed(magnitude: f64, units: &[(f64, &'static str)]) -> (f64, &'static str) {
+    let (factor, symbol) = units
+        .iter()
+        .rev()
+        .find(|(f, _)| magnitude.is_finite() && magnitude >= *f)
+        .unwrap_or(&units[0]);
+    (1.0 / factor, symbol)
+}
+
 /// The system whose `summary.json` name is `name`.
 pub fn from_name(name: &str) -> Option<Units> {
     [Units::Dimensionless, Units::Si]
@@ -109,5 +233,36 @@ mod tests {
             assert_eq!(from_name(u.name()), Some(u));
         }
         assert_eq!(from_name("imperial"), None);
+    }
+
+    #[test]
+    fn si_plots_use_a_prefixed_unit_for_the_values_shown() {
+        // A contact 300 µm long under 100 MPa: µm and MPa.
+        let u = PlotUnits::new(Units::Si, 3e-4, 1e8);
+        assert_eq!(
+            (u.x(), u.depth(), u.pressure()),
+            (
+                "x (\u{b5}m)".to_string(),
+                "z (\u{b5}m, depth)".to_string(),
+                "p (MPa)".to_string()
+            )
+        );
+        assert!((u.length(1.5e-4) - 150.0).abs() < 1e-9);
+        assert!((u.stress(2.5e7) - 25.0).abs() < 1e-9);
+        assert_eq!(u.stress_label("sigma_x"), "sigma_x (MPa)");
+        assert_eq!(u.length_text(-2.703e-6), "-2.703 \u{b5}m");
+        assert_eq!(u.length_text(0.0), "0 \u{b5}m");
+        let m = PlotUnits::new(Units::Si, 0.004, 2e9);
+        assert_eq!(
+            (m.x(), m.pressure()),
+            ("x (mm)".to_string(), "p (GPa)".to_string())
+        );
+        // Dimensionless: the paper's labels, values unchanged.
+        let d = PlotUnits::new(Units::Dimensionless, 3e-4, 1e8);
+        assert_eq!(
+            (d.x(), d.pressure(), d.stress_label("tau1")),
+            ("x'".to_string(), "p'".to_string(), "tau1 / E2".to_string())
+        );
+        assert_eq!(d.length(0.25), 0.25);
     }
 }

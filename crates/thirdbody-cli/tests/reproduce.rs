@@ -86,6 +86,24 @@ fn every_figure_is_written_with_finite_data_and_a_report() {
         let svg = std::fs::read_to_string(dir.join(name.replace(".png", ".svg"))).unwrap();
         assert!(svg.contains("<svg"), "{name}");
     }
+    // Plot texts write the paper's symbols: no ASCII spelling of a Greek letter or a
+    // subscript (mu, delta, tau1, sigma_x) is left in a title, label or legend.
+    for name in names.iter().filter(|n| n.ends_with(".svg")) {
+        let svg = std::fs::read_to_string(dir.join(name)).unwrap();
+        for text in svg.split("<text").skip(1) {
+            let text = text.split_once('>').unwrap().1.split('<').next().unwrap();
+            let words: Vec<&str> = text
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .collect();
+            assert!(
+                !words.iter().any(|w| {
+                    w.contains('_')
+                        || ["mu", "delta", "tau", "tau1", "sigma", "nu", "E1", "E2"].contains(w)
+                }),
+                "{name}: {text:?}"
+            );
+        }
+    }
     // Every number in every CSV is finite, and curves have points.
     let mut curves: BTreeMap<String, Vec<(String, Vec<f64>)>> = BTreeMap::new();
     for name in names.iter().filter(|n| n.ends_with(".csv")) {

@@ -184,53 +184,90 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
         })?;
     }
     if let Some(results) = o.stress {
-        stress_outputs::write_stress(&mut out, results, case.units, o.formats)?;
+        stress_outputs::write_stress(
+            &mut out,
+            results,
+            case,
+            (contact_x(solution), plot_units(case, solution)),
+            o.formats,
+        )?;
     }
 
-    let l = units::labels(case.units);
+    let u = plot_units(case, solution);
+    let (x_label, y_label, p_label) = (u.x(), u.y(), u.pressure());
+    let scaled = Grid {
+        cell: u.length(g.cell),
+        x0: u.length(g.x0),
+        y0: u.length(g.y0),
+        ..*g
+    };
+    let p_shown: Vec<f64> = p.iter().map(|&v| u.stress(v)).collect();
     out.write("pressure_map.png", |path| {
         plot::field_map(
             path,
-            g,
-            p,
+            &scaled,
+            &p_shown,
             "Contact pressure",
-            l.x,
-            l.y,
-            l.pressure,
+            &x_label,
+            &y_label,
+            &p_label,
             Some(p),
         )
     })?;
     out.write("pressure_x.png", |path| {
         let j = row_nearest_y0(g);
         let series = [Series {
-            label: format!("y = {:.3e}", g.y(j)),
-            x: (0..g.nx).map(|i| g.x(i)).collect(),
-            y: p[j * g.nx..(j + 1) * g.nx].to_vec(),
+            label: format!("y = {}", u.length_text(g.y(j))),
+            x: (0..g.nx).map(|i| scaled.x(i)).collect(),
+            y: p_shown[j * g.nx..(j + 1) * g.nx].to_vec(),
             dashed: false,
         }];
         plot::profile_plot(
             path,
             &series,
             "Pressure along x through the centre",
-            l.x,
-            l.pressure,
+            &x_label,
+            &p_label,
+            contact_x(solution).map(|(a, b)| (u.length(a), u.length(b))),
         )
     })?;
     if let Some(c) = &solution.compliance {
+        let l = units::labels(case.units);
         out.write("compliance_map.png", |path| {
             plot::field_map(
                 path,
-                g,
+                &scaled,
                 c,
                 "Layer compliance",
-                l.x,
-                l.y,
+                &x_label,
+                &y_label,
                 l.compliance,
                 Some(p),
             )
         })?;
     }
     out.commit_replacing(is_output_name)
+}
+
+/// How the plots of `case` write lengths and stresses: for an SI case, units chosen
+/// for its window and its largest pressure.
+pub fn plot_units(case: &Case, solution: &Solution) -> units::PlotUnits {
+    let g = &solution.grid;
+    let window = [
+        g.x0,
+        g.y0,
+        g.x0 + g.nx as f64 * g.cell,
+        g.y0 + g.ny as f64 * g.cell,
+    ]
+    .iter()
+    .fold(0.0f64, |m, v| m.max(v.abs()));
+    units::PlotUnits::new(case.units, window, solution.summary().max_pressure)
+}
+
+/// The contact's extent along x (cell edges), if there is a contact.
+pub fn contact_x(solution: &Solution) -> Option<(f64, f64)> {
+    let s = solution.summary();
+    (s.contact_area > 0.0).then_some((s.contact_x_min, s.contact_x_max))
 }
 
 /// The row whose centre is nearest y = 0 (the first of two equally near).

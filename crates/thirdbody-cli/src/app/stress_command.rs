@@ -195,7 +195,11 @@ pub fn run(args: &StressArgs) -> Result<()> {
     stress_outputs::write_stress(
         &mut out,
         &results,
-        file.case.units,
+        &file.case,
+        (
+            outputs::contact_x(&solution),
+            outputs::plot_units(&file.case, &solution),
+        ),
         args.format.unwrap_or_default(),
     )?;
     summary["stress"] = stress_outputs::summary_json(&results)?;

@@ -19,7 +19,9 @@ use ndarray::Array4;
 use serde_json::Value;
 use thirdbody::report::StressReport;
 use thirdbody::stress::{Side, StressField, StressResults};
-use thirdbody::Units;
+use thirdbody::Case;
+
+use crate::units::PlotUnits;
 
 use crate::app::outputs::Formats;
 use crate::app::section::{self, SectionId, SectionLabels};
@@ -38,14 +40,25 @@ pub fn summary_json(results: &StressResults) -> Result<Value> {
     Ok(serde_json::to_value(StressReport::of(results))?)
 }
 
-/// Stages every stress file into `out`.
+/// Stages every stress file of `case`'s `results` into `out`; `contact`: the contact's
+/// extent along x, which the sigma_x profile of a homogeneous body frames (a coated
+/// body's interface stresses reach beyond it); `u`: the plots' units.
 pub fn write_stress(
     out: &mut Staging,
     results: &StressResults,
-    units: Units,
+    case: &Case,
+    (contact, u): (Option<(f64, f64)>, PlotUnits),
     formats: Formats,
 ) -> Result<()> {
-    let l = crate::units::labels(units);
+    let interfaces: Vec<f64> = case
+        .body
+        .model()
+        .interface_depths()
+        .iter()
+        .map(|&z| u.length(z))
+        .collect();
+    let lengths = |v: &[f64]| -> Vec<f64> { v.iter().map(|&z| u.length(z)).collect() };
+    let stresses = |v: &[f64]| -> Vec<f64> { v.iter().map(|&s| u.stress(s)).collect() };
     let sections = section::sections(results)?;
     for &(id, f) in &sections {
         let name = id.name();
@@ -74,14 +87,15 @@ pub fn write_stress(
                 out.write(&format!("stress_xz_{what}.png"), |p| {
                     plot::section_map(
                         p,
-                        &f.xs,
-                        &f.zs,
-                        &fields[field],
-                        &format!("{what} in the plane y = {}", short(y)),
-                        l.x,
-                        l.depth,
-                        &format!("{what} {}", l.stress_scale),
+                        &lengths(&f.xs),
+                        &lengths(&f.zs),
+                        &stresses(&fields[field]),
+                        &format!("{what} in the plane y = {}", u.length_text(y)),
+                        &u.x(),
+                        &u.depth(),
+                        &u.stress_label(what),
                         10,
+                        &interfaces,
                     )
                 })?;
             }
@@ -99,9 +113,9 @@ pub fn write_stress(
             row_y = f.ys[j];
             Some(Series {
                 label: label.to_string(),
-                x: f.xs.clone(),
+                x: lengths(&f.xs),
                 y: (0..f.xs.len())
-                    .map(|i| f.components[0][f.index(i, j, 0)])
+                    .map(|i| u.stress(f.components[0][f.index(i, j, 0)]))
                     .collect(),
                 dashed: id == SectionId::Interface(Side::Substrate),
             })
@@ -112,9 +126,15 @@ pub fn write_stress(
             plot::profile_plot(
                 p,
                 &series,
-                &format!("sigma_x along x on the cell row y = {}", short(row_y)),
-                l.x,
-                &format!("sigma_x {}", l.stress_scale),
+                &format!(
+                    "sigma_x along x on the cell row y = {}",
+                    u.length_text(row_y)
+                ),
+                &u.x(),
+                &u.stress_label("sigma_x"),
+                contact
+                    .filter(|_| interfaces.is_empty())
+                    .map(|(a, b)| (u.length(a), u.length(b))),
             )
         })?;
     }
@@ -124,15 +144,6 @@ pub fn write_stress(
 /// Index of the value nearest `y` (the first of two equally near).
 pub fn nearest(ys: &[f64], y: f64) -> Option<usize> {
     (0..ys.len()).min_by(|&a, &b| (ys[a] - y).abs().total_cmp(&(ys[b] - y).abs()))
-}
-
-/// A number with 3 significant digits for titles.
-fn short(v: f64) -> String {
-    if v == 0.0 {
-        "0".into()
-    } else {
-        format!("{v:.3e}")
-    }
 }
 
 /// The eleven fields as a float64 NPY array of shape (11, nz, ny, nx).

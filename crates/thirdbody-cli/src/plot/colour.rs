@@ -153,24 +153,62 @@ pub(crate) fn linear_ticks(lo: f64, hi: f64, count: usize) -> impl Fn(&f64) -> S
     move |&v: &f64| format(v, digits)
 }
 
-/// Tick label on a logarithmic axis: plain decimal between 1e-3 and 1e5, scientific
-/// outside, at most 6 significant digits.
-pub(crate) fn log_tick(v: &f64) -> String {
-    let v = *v;
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
+/// Formatter of the tick labels of a logarithmic axis labelled at `keys`: one format
+/// for the whole axis, plain decimals (`0.002`, `0.05`, `100`) when every key lies
+/// between 1e-3 and 1e4, else powers of ten (`10⁻⁴`, `2×10⁻⁴`). At most 6 significant
+/// digits.
+pub(crate) fn log_ticks(keys: &[f64]) -> impl Fn(&f64) -> String {
+    let plain = keys.iter().all(|v| (1e-3..1e4).contains(&v.abs()));
+    move |&v: &f64| {
+        if v == 0.0 || !v.is_finite() {
+            return format!("{v}");
+        }
+        let rounded = significant(v, 6);
+        if plain {
+            format!("{rounded}")
+        } else {
+            power_of_ten(rounded)
+        }
     }
-    let digits = 6 - 1 - v.abs().log10().floor() as i32;
-    let rounded = if digits >= 0 {
-        let f = 10f64.powi(digits);
+}
+
+/// `v` rounded to `digits` significant digits.
+fn significant(v: f64, digits: i32) -> f64 {
+    let shift = digits - 1 - v.abs().log10().floor() as i32;
+    if shift >= 0 {
+        let f = 10f64.powi(shift);
         (v * f).round() / f
     } else {
         v
-    };
-    if (1e-3..1e5).contains(&rounded.abs()) {
-        format!("{rounded}")
+    }
+}
+
+/// `v` (non-zero, finite) as `m×10ⁿ` with superscript digits, `10ⁿ` when m is 1.
+fn power_of_ten(v: f64) -> String {
+    let mut exponent = v.abs().log10().floor() as i32;
+    let mut mantissa = significant(v / 10f64.powi(exponent), 6);
+    if mantissa.abs() >= 10.0 {
+        exponent += 1;
+        mantissa /= 10.0;
+    }
+    let superscript: String = exponent
+        .to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '\u{207b}',
+            '0' => '\u{2070}',
+            '1' => '\u{b9}',
+            '2' => '\u{b2}',
+            '3' => '\u{b3}',
+            d => char::from_u32(0x2070 + d.to_digit(10).unwrap_or(0)).unwrap_or(d),
+        })
+        .collect();
+    if mantissa == 1.0 {
+        format!("10{superscript}")
+    } else if mantissa == -1.0 {
+        format!("\u{2212}10{superscript}")
     } else {
-        format!("{rounded:e}")
+        format!("{mantissa}\u{d7}10{superscript}")
     }
 }
 
@@ -312,9 +350,18 @@ mod tests {
         assert_eq!(g(&-0.0), "0");
         let h = linear_ticks(0.0, 2.0e-4, 5);
         assert_eq!(h(&5.0e-5), "5.0e-5");
-        assert_eq!(log_tick(&0.001), "0.001");
-        assert_eq!(log_tick(&100.0), "100");
-        assert_eq!(log_tick(&1.0e6), "1e6");
-        assert_eq!(log_tick(&1.0e-5), "1e-5");
+        // A logarithmic axis: plain decimals or powers of ten, one for all its ticks.
+        let plain = log_ticks(&[0.001, 0.01, 0.1]);
+        assert_eq!(
+            (plain(&0.001), plain(&0.002)),
+            ("0.001".into(), "0.002".into())
+        );
+        let powers = log_ticks(&[1e-4, 1e-3, 1e-2, 0.1]);
+        assert_eq!(powers(&1e-4), "10\u{207b}\u{2074}");
+        assert_eq!(powers(&0.001), "10\u{207b}\u{b3}");
+        assert_eq!(powers(&0.1), "10\u{207b}\u{b9}");
+        assert_eq!(powers(&2e-5), "2\u{d7}10\u{207b}\u{2075}");
+        assert_eq!(powers(&1.0e6), "10\u{2076}");
+        assert_eq!(powers(&1.0), "10\u{2070}");
     }
 }

@@ -9,10 +9,13 @@
 //! above the data for it. Series are coloured by the "tab10" cycle, except that a dashed
 //! and a solid series whose labels differ only after their last ", " (e.g.
 //! "surface, linear" and "surface, nonlinear") share a colour. A profile along the
-//! sliding direction (x) notes it under the plot. A logarithmic y axis is labelled at
-//! its decades (and at 2 and 5 times them when it spans fewer than three), in the x
-//! axis's tick style; hollow markers (a ring in the series' colour) are explained by a
-//! last legend line.
+//! sliding direction (x) notes it under the plot. A logarithmic axis (x or y) is
+//! labelled at its decades (and at 2 and 5 times them when it spans fewer than three),
+//! all its labels in one format (plain decimals between 1e-3 and 1e4, else powers of
+//! ten, `10⁻⁴`, `2×10⁻⁴`); minor grid lines are at most [`LINEAR_MINOR`] between labelled
+//! ticks of a linear axis and, on a logarithmic one, at the multiples of a decade only
+//! where they stay [`MINOR_GAP`] apart. Hollow markers (a ring in the series' colour) are
+//! explained by a last legend line.
 
 use anyhow::Result;
 use plotters::coord::combinators::BindKeyPoints;
@@ -21,7 +24,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::colour::{linear_ticks, log_tick, min_max, tick_values};
+use super::colour::{linear_ticks, log_ticks, min_max, tick_values};
 use super::output::{
     draw_err, draw_sliding_note, draw_title, text, Figure, LABEL_SIZE, TICK_SIZE, TITLE_STRIP,
 };
@@ -122,6 +125,33 @@ pub(crate) fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
     } else {
         tick_values(lo, hi, Y_TICKS)
     }
+}
+
+/// About the plotting area's width and height, pixels (the minor grid's spacing).
+const PLOT_WIDTH: f64 = 740.0;
+const PLOT_HEIGHT: f64 = 480.0;
+/// Smallest spacing of minor grid lines, pixels: closer ones read as a grey band.
+pub(crate) const MINOR_GAP: f64 = 8.0;
+/// Minor lines between labelled ticks of a linear axis, at most.
+pub(crate) const LINEAR_MINOR: usize = 4;
+
+/// Minor grid lines of a logarithmic axis over `[lo, hi]` drawn `px` pixels long: the
+/// integer multiples 2..9 of each decade when the closest two (9 and 10 times a decade)
+/// are [`MINOR_GAP`] apart, else 2 and 5 times each decade when those are, else none.
+pub(crate) fn log_minor(lo: f64, hi: f64, px: f64) -> Vec<f64> {
+    let per_decade = px / (hi / lo).log10().max(1e-12);
+    let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let mantissas: &[f64] = if per_decade * (10.0f64 / 9.0).log10() >= MINOR_GAP {
+        &[2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
+    } else if per_decade * 2.0f64.log10() >= MINOR_GAP {
+        &[2.0, 5.0]
+    } else {
+        &[]
+    };
+    (first..=last)
+        .flat_map(|e| mantissas.iter().map(move |m| m * 10f64.powi(e)))
+        .filter(|v| (lo..=hi).contains(v))
+        .collect()
 }
 
 /// Whether point `k` of series `s` is drawn hollow.
@@ -275,7 +305,9 @@ impl LineFigure<'_> {
     /// The labelled ticks of the y axis over `y` and their format.
     fn y_ticks(&self, y: (f64, f64)) -> (Vec<f64>, TickFormat) {
         if self.log_y {
-            (log_keys(y.0, y.1), Box::new(log_tick))
+            let keys = log_keys(y.0, y.1);
+            let format = Box::new(log_ticks(&keys));
+            (keys, format)
         } else {
             (
                 tick_values(y.0, y.1, Y_TICKS),
@@ -449,6 +481,8 @@ impl LineFigure<'_> {
             .configure_mesh()
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(205, 205, 205))
+            .x_max_light_lines(LINEAR_MINOR)
+            .y_max_light_lines(LINEAR_MINOR)
             .x_labels(X_TICKS)
             .y_labels(Y_TICKS)
             .x_label_formatter(&x_labels)
@@ -557,17 +591,28 @@ impl Figure for LineFigure<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let ((x0, x1), y_range) = self.ranges();
-        // The y axis: plotters' linear one, or a logarithmic one ticked at `log_keys`.
-        let log_y = |y: (f64, f64)| (y.0..y.1).log_scale().with_key_points(log_keys(y.0, y.1));
+        // A logarithmic axis: plotters' log scale, labelled at `log_keys`, with a minor
+        // grid line at the integer multiples of each decade only where they stay apart.
+        let log_y = |y: (f64, f64)| {
+            (y.0..y.1)
+                .log_scale()
+                .with_key_points(log_keys(y.0, y.1))
+                .with_light_points(log_minor(y.0, y.1, PLOT_HEIGHT))
+        };
         let linear_y = |y: (f64, f64)| y.0..y.1;
         if self.log_x {
-            let coord: LogCoord<f64> = (x0..x1).log_scale().into();
-            let keys = coord.key_points(X_TICKS);
-            let x_axis = || (x0..x1).log_scale();
+            let keys = log_keys(x0, x1);
+            let format = log_ticks(&keys);
+            let x_axis = || {
+                (x0..x1)
+                    .log_scale()
+                    .with_key_points(keys.clone())
+                    .with_light_points(log_minor(x0, x1, PLOT_WIDTH))
+            };
             if self.log_y {
-                self.draw_on(root, x_axis, log_y, &keys, &log_rank, &log_tick, y_range)
+                self.draw_on(root, x_axis, log_y, &keys, &log_rank, &format, y_range)
             } else {
-                self.draw_on(root, x_axis, linear_y, &keys, &log_rank, &log_tick, y_range)
+                self.draw_on(root, x_axis, linear_y, &keys, &log_rank, &format, y_range)
             }
         } else {
             let coord: RangedCoordf64 = (x0..x1).into();

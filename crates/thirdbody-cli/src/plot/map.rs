@@ -1,7 +1,15 @@
 //! Colour maps of fields on rectilinear cells (a surface grid or a vertical section):
 //! the raster of cell colours at the plot's pixel resolution, optional contour lines,
-//! an outline, a marked extreme, the note of the sliding direction under the map, and the
-//! colour bar.
+//! an outline, material interfaces, a marked extreme, the note of the sliding direction
+//! under the map, and the colour bar.
+//!
+//! Nothing is written over the data but lines and the small cross of the extreme: the
+//! extreme's value and the interfaces' legend go to a strip between the title and the
+//! plotting area (the legend of a surface map's outline goes to the corner the contact
+//! leaves emptiest). A section is drawn without padding: at equal scales when its depth
+//! is between `SHORT_SIDE_MIN / LONG_SIDE` (about a third) and the inverse of that times
+//! its width, else with the shorter extent stretched to that ratio (the ticks give each
+//! axis its scale).
 
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -24,9 +32,9 @@ const LONG_SIDE: f64 = 640.0;
 /// Shortest side allowed (a very elongated window is padded to keep equal aspect; a
 /// section only below, so that its surface stays at the top edge).
 const SHORT_SIDE_MIN: f64 = 220.0;
-/// Depth over width of the shallowest section drawn at equal scales without padding:
-/// a section shallower than this is padded below (or, under a fifth, stretched).
-pub(crate) const SECTION_FULL_RATIO: f64 = SHORT_SIDE_MIN / LONG_SIDE;
+/// Height of one line of the strip above a section (the extreme's value, the
+/// interfaces' legend), pixels.
+const HEADER_LINE: u32 = 26;
 
 /// A line through points in plot coordinates.
 pub(crate) type Polyline = Vec<(f64, f64)>;
@@ -61,6 +69,9 @@ pub(crate) struct MapFigure<'a> {
     /// Corner of the legend (of the outline).
     pub legend_corner: Corner,
     pub marker: Option<Marker>,
+    /// Horizontal lines across the map at these plot y (a section's material
+    /// interfaces, at minus their depth), drawn dashed and named in the strip above.
+    pub interfaces: Vec<f64>,
 }
 
 /// A corner of the plotting area.
@@ -110,7 +121,14 @@ impl MapFigure<'_> {
         let (y0, y1) = (self.rows.first_edge, self.rows.last_edge);
         let (rx, ry) = (x1 - x0, y1 - y0);
         let ratio = ry / rx;
-        let (w, h) = if !self.equal_aspect {
+        let (w, h) = if self.y_negated {
+            // A section: no padding; the shorter extent stretched when it is too short.
+            if ratio <= 1.0 {
+                (LONG_SIDE, (LONG_SIDE * ratio).max(SHORT_SIDE_MIN))
+            } else {
+                ((LONG_SIDE / ratio).max(SHORT_SIDE_MIN), LONG_SIDE)
+            }
+        } else if !self.equal_aspect {
             (LONG_SIDE, 0.68 * LONG_SIDE)
         } else if ratio <= 1.0 {
             (LONG_SIDE, (LONG_SIDE * ratio).max(SHORT_SIDE_MIN))
@@ -119,7 +137,7 @@ impl MapFigure<'_> {
         };
         let plot_px = (w.round() as u32, h.round() as u32);
         let (mut x_range, mut y_range) = ((x0, x1), (y0, y1));
-        if self.equal_aspect {
+        if self.equal_aspect && !self.y_negated {
             // Same data length per pixel on both axes: widen the axis that has less.
             let per_px = (rx / plot_px.0 as f64).max(ry / plot_px.1 as f64);
             let widen = |(a, b): (f64, f64), px: u32| {
@@ -128,13 +146,7 @@ impl MapFigure<'_> {
                 (mid - half, mid + half)
             };
             x_range = widen(x_range, plot_px.0);
-            y_range = if self.y_negated {
-                // A section keeps its surface (the top) at the top edge: pad below.
-                let extra = per_px * plot_px.1 as f64 - ry;
-                (y0 - extra, y1)
-            } else {
-                widen(y_range, plot_px.1)
-            };
+            y_range = widen(y_range, plot_px.1);
         }
         Layout {
             plot_px,
@@ -175,12 +187,51 @@ impl MapFigure<'_> {
     }
 }
 
+/// Dash and gap of an interface line, pixels.
+const INTERFACE_DASH: (u32, u32) = (8, 5);
+/// Length of the interface line's sample in the legend, pixels.
+const INTERFACE_SAMPLE: i32 = 30;
+
+/// Width of `s` in the tick labels' font, pixels (the font is registered before any
+/// drawing; 0 if it cannot be measured).
+fn text_width(s: &str) -> i32 {
+    use plotters::style::IntoFont;
+    (super::output::FAMILY, TICK_SIZE)
+        .into_font()
+        .layout_box(s)
+        .map_or(0, |((x0, _), (x1, _))| x1 - x0)
+}
+
+impl MapFigure<'_> {
+    /// Lines of the strip above the plotting area for a plotting area `width` pixels
+    /// wide: none without a marker and interfaces, two when the marker's text and the
+    /// interfaces' legend do not fit side by side.
+    fn header_lines(&self, width: u32) -> u32 {
+        let marker = self.marker.as_ref().map(|m| text_width(&m.text) + 24);
+        let legend = (!self.interfaces.is_empty())
+            .then(|| INTERFACE_SAMPLE + 8 + text_width(self.interface_label()));
+        match (marker, legend) {
+            (None, None) => 0,
+            (Some(a), Some(b)) if a + b + 24 > width as i32 => 2,
+            _ => 1,
+        }
+    }
+
+    fn interface_label(&self) -> &'static str {
+        if self.interfaces.len() > 1 {
+            "interfaces between materials"
+        } else {
+            "interface between materials"
+        }
+    }
+}
+
 impl Figure for MapFigure<'_> {
     fn size(&self) -> (u32, u32) {
         let (w, h) = self.layout().plot_px;
         (
             w + LEFT_AREA + 2 * MARGIN + BAR_STRIP,
-            h + BOTTOM_AREA + 2 * MARGIN + TITLE_STRIP,
+            h + BOTTOM_AREA + 2 * MARGIN + TITLE_STRIP + self.header_lines(w) * HEADER_LINE,
         )
     }
 
@@ -189,6 +240,8 @@ impl Figure for MapFigure<'_> {
         let (width, _) = self.size();
         let (title_area, body) = root.split_vertically(TITLE_STRIP);
         draw_title(&title_area, self.title)?;
+        let header_lines = self.header_lines(layout.plot_px.0);
+        let (_, body) = body.split_vertically(header_lines * HEADER_LINE);
         let (main, bar) = body.split_horizontally(width - BAR_STRIP);
         let (x0, x1) = layout.x_range;
         let (y0, y1) = layout.y_range;
@@ -277,17 +330,26 @@ impl Figure for MapFigure<'_> {
                 .map_err(draw_err)?;
         }
 
+        // Interfaces: dashed black over a light halo, so they read on any colour.
+        for &y in &self.interfaces {
+            let across = [(x0, y), (x1, y)];
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    across.to_vec(),
+                    WHITE.mix(0.7).stroke_width(4),
+                )))
+                .map_err(draw_err)?;
+            chart
+                .draw_series(DashedLineSeries::new(
+                    across,
+                    INTERFACE_DASH.0,
+                    INTERFACE_DASH.1,
+                    BLACK.stroke_width(2),
+                ))
+                .map_err(draw_err)?;
+        }
+
         if let Some(marker) = &self.marker {
-            let right_half = marker.at.0 > 0.5 * (x0 + x1);
-            let anchor = plotters::style::text_anchor::Pos::new(
-                if right_half {
-                    plotters::style::text_anchor::HPos::Right
-                } else {
-                    plotters::style::text_anchor::HPos::Left
-                },
-                plotters::style::text_anchor::VPos::Center,
-            );
-            let dx = if right_half { -12 } else { 12 };
             let cross = |style: ShapeStyle| {
                 EmptyElement::at(marker.at)
                     + PathElement::new(vec![(-7, -7), (7, 7)], style)
@@ -296,30 +358,62 @@ impl Figure for MapFigure<'_> {
             chart
                 .draw_series([cross(WHITE.stroke_width(5)), cross(BLACK.stroke_width(2))])
                 .map_err(draw_err)?;
-            // The text on a light box so that it reads on any colour.
-            let style = text(TICK_SIZE).pos(anchor).color(&BLACK);
-            let (tw, th) = main
-                .estimate_text_size(&marker.text, &style)
+        }
+        // The strip above the plotting area: the extreme's cross and value at its right,
+        // the interfaces' legend at its left (on a second line when both do not fit).
+        let (px, py) = chart.plotting_area().get_pixel_range();
+        let line_centre = |line: u32| {
+            py.start - MARGIN as i32 - ((header_lines - line) * HEADER_LINE) as i32
+                + HEADER_LINE as i32 / 2
+        };
+        if let Some(marker) = &self.marker {
+            let style = text(TICK_SIZE).pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Right,
+                plotters::style::text_anchor::VPos::Center,
+            ));
+            let y = line_centre(0);
+            root.draw_text(&marker.text, &style, (px.end, y))
                 .map_err(draw_err)?;
-            let (tw, th) = (tw as i32, th as i32);
-            let (left, right) = if right_half {
-                (dx - tw - 6, dx + 6)
+            let w = text_width(&marker.text);
+            let at = (px.end - w - 14, y);
+            root.draw(
+                &(EmptyElement::at(at)
+                    + PathElement::new(vec![(-5, -5), (5, 5)], BLACK.stroke_width(2))
+                    + PathElement::new(vec![(-5, 5), (5, -5)], BLACK.stroke_width(2))),
+            )
+            .map_err(draw_err)?;
+        }
+        if !self.interfaces.is_empty() {
+            let line = if header_lines > 1 || self.marker.is_none() {
+                header_lines - 1
             } else {
-                (dx - 6, dx + tw + 6)
+                0
             };
-            let label = EmptyElement::at(marker.at)
-                + Rectangle::new(
-                    [(left, -th / 2 - 4), (right, th / 2 + 4)],
-                    WHITE.mix(0.8).filled(),
-                )
-                + Text::new(marker.text.clone(), (dx, 0), style);
-            chart
-                .draw_series(std::iter::once(label))
+            let y = line_centre(line);
+            let x = px.start;
+            let mut dash = 0;
+            while dash < INTERFACE_SAMPLE {
+                let end = (dash + INTERFACE_DASH.0 as i32).min(INTERFACE_SAMPLE);
+                root.draw(&PathElement::new(
+                    vec![(x + dash, y), (x + end, y)],
+                    BLACK.stroke_width(2),
+                ))
                 .map_err(draw_err)?;
+                dash = end + INTERFACE_DASH.1 as i32;
+            }
+            let style = text(TICK_SIZE).pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Left,
+                plotters::style::text_anchor::VPos::Center,
+            ));
+            root.draw_text(
+                self.interface_label(),
+                &style,
+                (x + INTERFACE_SAMPLE + 8, y),
+            )
+            .map_err(draw_err)?;
         }
 
         // Under the map, right-aligned, level with the x description.
-        let (px, py) = chart.plotting_area().get_pixel_range();
         draw_sliding_note(&main, px, py.end, 44, self.x_label)?;
 
         draw_colour_bar(

@@ -4,7 +4,8 @@
 //!
 //! Every figure has a title, labelled axes and, for maps, a labelled colour bar; maps of
 //! the surface keep equal scales on x and y. The format follows the file extension:
-//! `.png` (raster, RGB) or `.svg` (vector; the colour raster is embedded as PNG). Text
+//! `.svg` (vector; the colour raster is embedded as PNG) or `.png` (that SVG rasterised,
+//! RGB, anti-aliased lines and kerned text, so both formats show one picture). Text
 //! uses the embedded DejaVu Sans, so no system font is needed. Files are written
 //! atomically: rendered to `<stem>.tmp-<pid>.<ext>` next to the target, then renamed.
 //!
@@ -183,6 +184,7 @@ pub fn field_map(
         outline,
         legend_corner,
         marker: None,
+        interfaces: Vec::new(),
     };
     output::write_figure(path, &figure)
 }
@@ -218,14 +220,43 @@ pub fn line_plot_with(
 }
 
 /// [`line_plot`] of profiles along the sliding direction x (linear x axis), with the note
-/// "slider moves +x →" under the plot.
+/// "slider moves +x →" under the plot. `contact`: the contact's extent along x
+/// (`x_min`, `x_max`); the plot then shows it and a margin of [`PROFILE_MARGIN`] of its
+/// length on each side (as far as the series reach), not the whole window, where the
+/// pressure is mostly zero.
 pub fn profile_plot(
     path: &Path,
     series: &[Series],
     title: &str,
     x_label: &str,
     y_label: &str,
+    contact: Option<(f64, f64)>,
 ) -> Result<()> {
+    let framed: Vec<Series>;
+    let series = match contact {
+        Some((lo, hi)) if lo.is_finite() && hi.is_finite() && hi > lo => {
+            let margin = PROFILE_MARGIN * (hi - lo);
+            let shown = (lo - margin)..=(hi + margin);
+            framed = series
+                .iter()
+                .map(|s| {
+                    let (x, y) =
+                        s.x.iter()
+                            .zip(&s.y)
+                            .filter(|(x, _)| shown.contains(x))
+                            .unzip();
+                    Series { x, y, ..s.clone() }
+                })
+                .filter(|s: &Series| !s.x.is_empty())
+                .collect();
+            if framed.is_empty() {
+                series
+            } else {
+                &framed
+            }
+        }
+        _ => series,
+    };
     line_figure(
         path,
         series,
@@ -236,6 +267,10 @@ pub fn profile_plot(
         true,
     )
 }
+
+/// Margin beyond the contact on each side of a profile, as a fraction of the contact's
+/// length.
+pub const PROFILE_MARGIN: f64 = 0.15;
 
 fn line_figure(
     path: &Path,
@@ -291,11 +326,13 @@ fn line_figure(
 
 /// Colour map of a vertical section (e.g. a stress component in the XZ plane): `xs`
 /// (len nx), `zs` (len nz, depth, drawn increasing DOWNWARD), `field[k*nx+i]` at
-/// `(xs[i], zs[k])`, both strictly increasing; colour bar; contour lines (below), and the
-/// extreme (the value of largest magnitude) marked by a small cross labelled with its
-/// value and position. Diverging colour map when the field changes sign, sequential
-/// otherwise. Equal scales on x and z unless one extent is more than five times the
-/// other.
+/// `(xs[i], zs[k])`, both strictly increasing; colour bar; contour lines (below); the
+/// material `interfaces` (depths, in the units of `zs`) as dashed lines; and the extreme
+/// (the value of largest magnitude) marked by a small cross, its value and position
+/// written in a strip above the picture (no label covers the field). Diverging colour
+/// map when the field changes sign, sequential otherwise. Equal scales on x and z unless
+/// the shown depth is under about a third of the width (or the width under a third of
+/// the depth): the shorter extent is then stretched, never padded.
 ///
 /// Contour lines: `contours` evenly spaced levels dividing the field's range into
 /// `contours + 1` equal parts (0 for none), of which only those whose magnitude reaches
@@ -304,10 +341,10 @@ fn line_figure(
 ///
 /// Depths shown (see `shown_depths`): from the first row down to the deepest row where
 /// the field reaches a drawn level, or a depth of [`LINE_FLOOR`] of the peak without
-/// lines, and to any deeper maximum (of either sign, over the rows) that reaches
-/// [`FADED`] of the peak; then a margin of a tenth of that depth (at least two rows),
-/// and at least as deep as fills a panel drawn at equal scales. Deeper rows are left
-/// out of the picture (the caller's data files keep them).
+/// lines, to any deeper maximum (of either sign, over the rows) that reaches [`FADED`]
+/// of the peak, and to the deepest interface; then a margin of a tenth of that depth
+/// (at least two rows). Deeper rows are left out of the picture (the caller's data
+/// files keep them).
 #[allow(clippy::too_many_arguments)]
 pub fn section_map(
     path: &Path,
@@ -319,19 +356,17 @@ pub fn section_map(
     z_label: &str,
     colour_label: &str,
     contours: usize,
+    interfaces: &[f64],
 ) -> Result<()> {
     check_axis("section xs", xs)?;
+    check_finite("section interfaces", interfaces)?;
     check_axis("section zs", zs)?;
     let (nx, nz) = (xs.len(), zs.len());
     check_len("section field", field.len(), nx * nz, "xs.len() * zs.len()")?;
     check_finite("section field", field)?;
     let (lo, hi) = min_max(field);
     let levels = drawn_levels(lo, hi, contours);
-    let width = {
-        let cols = Axis::from_centres(xs);
-        cols.last_edge - cols.first_edge
-    };
-    let nz = shown_depths(zs, nx, field, &levels, map::SECTION_FULL_RATIO * width);
+    let nz = shown_depths(zs, nx, field, &levels, interfaces);
     let (zs, field) = (&zs[..nz], &field[..nz * nx]);
     let (title, x_label, z_label, colour_label) = (
         pretty(title),
@@ -367,7 +402,7 @@ pub fn section_map(
         text: format!("{} at ({}, {})", short(extreme), short(x_max), short(z_max)),
     });
 
-    let ratio = (rows.last_edge - rows.first_edge) / (cols.last_edge - cols.first_edge);
+    let z_shown = -rows.first_edge;
     let figure = MapFigure {
         title: &title,
         x_label: &x_label,
@@ -378,11 +413,16 @@ pub fn section_map(
         rows,
         values,
         y_negated: true,
-        equal_aspect: (0.2..=5.0).contains(&ratio),
+        equal_aspect: true,
         lines,
         outline: None,
         legend_corner: Corner::UpperRight,
         marker,
+        interfaces: interfaces
+            .iter()
+            .filter(|&&z| z > zs[0] && z < z_shown)
+            .map(|z| -z)
+            .collect(),
     };
     output::write_figure(path, &figure)
 }
@@ -440,15 +480,15 @@ fn drawn_levels(lo: f64, hi: f64, contours: usize) -> Vec<f64> {
 }
 
 /// How many of the first depth rows of a section (`zs.len()` rows of `nx` values) to
-/// show. The deepest row that matters is the deepest where the field reaches one of the
-/// drawn contour `levels` (every drawn line is then in the picture; without levels,
-/// where its magnitude reaches [`LINE_FLOOR`] of the peak), or a deeper maximum over the
-/// rows of the field's positive or negative part that reaches [`FADED`] of the peak
-/// (e.g. the tension at a coating's interface). Below it: a margin of a tenth of the
-/// depth down to there, and at least two rows; and rows spanning (edge to edge) at least
-/// `min_extent`, as far as there are rows, so that an equal-scale panel is filled with
-/// data rather than padded.
-fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], min_extent: f64) -> usize {
+/// show: where the field lives, and the material `interfaces` (depths). The deepest row
+/// that matters is the deepest where the field reaches one of the drawn contour
+/// `levels` (every drawn line is then in the picture; without levels, where its
+/// magnitude reaches [`LINE_FLOOR`] of the peak), a deeper maximum over the rows of the
+/// field's positive or negative part that reaches [`FADED`] of the peak (e.g. the
+/// tension at a coating's interface), or the first row at or below the deepest
+/// interface. Below it: a margin of a tenth of the depth down to there, and at least
+/// two rows.
+fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], interfaces: &[f64]) -> usize {
     let nz = zs.len();
     let row = |k: usize| &field[k * nx..(k + 1) * nx];
     let row_hi: Vec<f64> = (0..nz)
@@ -486,15 +526,13 @@ fn shown_depths(zs: &[f64], nx: usize, field: &[f64], levels: &[f64], min_extent
             deepest = k;
         }
     }
+    if let Some(z) = interfaces.iter().copied().reduce(f64::max) {
+        let below = zs.iter().position(|&d| d >= z).unwrap_or(nz - 1);
+        deepest = deepest.max(below);
+    }
     let z_end = zs[deepest] + MARGIN * (zs[deepest] - zs[0]);
     let by_margin = zs.iter().take_while(|&&z| z <= z_end).count();
-    let filling = (2..=nz)
-        .find(|&n| {
-            let rows = Axis::from_centres(&zs[..n]);
-            rows.last_edge - rows.first_edge >= min_extent
-        })
-        .unwrap_or(nz);
-    by_margin.max(deepest + 3).max(filling).min(nz)
+    by_margin.max(deepest + 3).min(nz)
 }
 
 /// Margin below the deepest row that matters, as a fraction of its depth.

@@ -1,7 +1,7 @@
-//! Writing a figure to disk: the embedded font, the choice of backend from the file
-//! extension (PNG raster or SVG vector) and the atomic write (render to a temporary file
-//! in the same folder, then rename; the temporary is removed on error; see
-//! [`crate::atomic`]).
+//! Writing a figure to disk: the embedded font, the output format from the file
+//! extension (SVG vector, or PNG: that SVG rasterised anti-aliased by resvg, see
+//! `write_png`) and the atomic write (render to a temporary file in the same folder,
+//! then rename; the temporary is removed on error; see [`crate::atomic`]).
 
 use std::path::Path;
 use std::sync::OnceLock;
@@ -71,32 +71,79 @@ pub(crate) fn write_figure(path: &Path, figure: &impl Figure) -> Result<()> {
 }
 
 fn render(tmp: &Path, format: Format, figure: &impl Figure) -> Result<()> {
-    let size = figure.size();
+    let svg = svg_text(figure)?;
     match format {
-        Format::Png => {
-            let root = BitMapBackend::new(tmp, size).into_drawing_area();
-            draw_and_present(&root, figure)
-        }
+        Format::Png => write_png(tmp, &svg, figure.size()),
         Format::Svg => {
-            {
-                let root = SVGBackend::new(tmp, size).into_drawing_area();
-                draw_and_present(&root, figure)?;
-            }
-            fix_svg_data_uri(tmp)
+            std::fs::write(tmp, svg).with_context(|| format!("writing {}", tmp.display()))
         }
     }
 }
 
+/// The figure drawn by plotters' SVG backend, with the raster's media type corrected:
 /// plotters 0.3.7 embeds rasters as `data:png;base64,...`, which is not a valid media
-/// type (RFC 2397 wants `image/png`) and some SVG readers refuse it: correct it in place.
-fn fix_svg_data_uri(svg: &Path) -> Result<()> {
-    let text =
-        std::fs::read_to_string(svg).with_context(|| format!("reading back {}", svg.display()))?;
-    if text.contains("\"data:png;base64,") {
-        let fixed = text.replace("\"data:png;base64,", "\"data:image/png;base64,");
-        std::fs::write(svg, fixed).with_context(|| format!("rewriting {}", svg.display()))?;
+/// type (RFC 2397 wants `image/png`) and some SVG readers refuse it.
+fn svg_text(figure: &impl Figure) -> Result<String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, figure.size()).into_drawing_area();
+        draw_and_present(&root, figure)?;
     }
-    Ok(())
+    Ok(svg.replace("\"data:png;base64,", "\"data:image/png;base64,"))
+}
+
+/// Rasterises the SVG text of a figure of `size` pixels to an RGB PNG at `path`.
+///
+/// Why through SVG: plotters' bitmap backend draws lines without anti-aliasing (edges
+/// in steps, widths that change with the slope) and places each glyph at a whole pixel
+/// (digits unevenly spaced). resvg (tiny-skia) draws the same SVG anti-aliased and lays
+/// out text with the font's advances and kerning, so the PNG and the SVG of a figure
+/// are one picture. Supersampling the bitmap backend would need every pixel size of
+/// the layout scaled and would still place glyphs by whole (super)pixels. The cost is a
+/// few tens of milliseconds per figure.
+fn write_png(path: &Path, svg: &str, (w, h): (u32, u32)) -> Result<()> {
+    let tree = resvg::usvg::Tree::from_str(svg, svg_options())
+        .map_err(|e| anyhow!("reading back the figure's SVG: {e}"))?;
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h)
+        .ok_or_else(|| anyhow!("a figure of {w} x {h} pixels cannot be rasterised"))?;
+    pixmap.fill(resvg::tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::identity(),
+        &mut pixmap.as_mut(),
+    );
+    // Opaque throughout (the white fill): keep the colour channels.
+    let rgb: Vec<u8> = pixmap
+        .data()
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    let file =
+        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?;
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().map_err(|e| anyhow!("PNG: {e}"))?;
+    writer
+        .write_image_data(&rgb)
+        .map_err(|e| anyhow!("PNG: {e}"))?;
+    writer.finish().map_err(|e| anyhow!("PNG: {e}"))
+}
+
+/// The options of the rasteriser: the embedded font as the only one, for the family
+/// "sans-serif" the SVG names.
+fn svg_options() -> &'static resvg::usvg::Options<'static> {
+    static OPTIONS: OnceLock<resvg::usvg::Options<'static>> = OnceLock::new();
+    OPTIONS.get_or_init(|| {
+        let mut fonts = resvg::usvg::fontdb::Database::new();
+        fonts.load_font_data(FONT_BYTES.to_vec());
+        fonts.set_sans_serif_family("DejaVu Sans");
+        resvg::usvg::Options {
+            font_family: "DejaVu Sans".into(),
+            fontdb: std::sync::Arc::new(fonts),
+            ..resvg::usvg::Options::default()
+        }
+    })
 }
 
 fn draw_and_present<DB: DrawingBackend>(
@@ -173,15 +220,19 @@ pub(crate) fn draw_sliding_note<DB: DrawingBackend>(
 }
 
 /// `text` with the ASCII spellings of the paper's symbols written as the symbols the
-/// embedded font draws: whole words `mu`, `delta`, `tau1`, `sigma_x`, ... become μ, δ,
-/// τ₁, σₓ (subscripts where Unicode has the glyph, else plain: `sigma_y` is σy), and
-/// `E2`, `h1`, `p0`, `C0` take subscript digits; an apostrophe right after a word (the
-/// dimensionless mark, `x'`) becomes the prime ′. Other text is unchanged.
+/// embedded font draws: whole words `mu`, `mu_linear`, `delta`, `tau1`, `sigma_x`, ...
+/// become μ, μ(linear), δ, τ₁, σₓ (subscripts where Unicode has the glyph, else plain:
+/// `sigma_y` is σy), and `E2`, `h1`, `p0`, `C0`, `nu1` take subscript digits; an
+/// apostrophe right after a word (the dimensionless mark, `x'`) becomes the prime ′.
+/// Other text is unchanged.
 pub(crate) fn pretty(text: &str) -> String {
     fn symbol(word: &str) -> Option<&'static str> {
         Some(match word {
             "mu" => "\u{3bc}",
+            "mu_linear" => "\u{3bc}(linear)",
             "delta" => "\u{3b4}",
+            "nu1" => "\u{3bd}\u{2081}",
+            "nu2" => "\u{3bd}\u{2082}",
             "tau1" => "\u{3c4}\u{2081}",
             "tau2" => "\u{3c4}\u{2082}",
             "tau3" => "\u{3c4}\u{2083}",

@@ -9,7 +9,7 @@ use thirdbody::Case;
 
 use super::catalogue::{self, parameter_line};
 use super::render::{
-    line_figure, max_pressure, mu_curves, number, pressure_row, push_curve_ends, report, L,
+    self, line_figure, max_pressure, mu_curves, number, pressure_row, push_curve_ends, report, L,
 };
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, Resolution};
@@ -50,7 +50,7 @@ pub fn fig2(_: &mut Solutions, _: Resolution, files: &mut FigureFiles) -> Result
         &series,
         "Layer compliance, eq. 11",
         [L.pressure, "C / C0"],
-        false,
+        (false, None),
     )?;
     let at_p0 = catalogue::sigmoid(1.0, 1.0, 0.005).law_at(0.005).compliance;
     rep.numbers
@@ -151,7 +151,15 @@ fn pressure_curves(
             None,
         ));
     }
-    line_figure(files, stem, &series, title, [L.x, L.pressure], false)
+    let contact = render::contact_x(&solutions);
+    line_figure(
+        files,
+        stem,
+        &series,
+        title,
+        [L.x, L.pressure],
+        (false, contact),
+    )
 }
 
 pub fn fig4(
@@ -237,7 +245,7 @@ pub fn fig6(
         &series,
         "Friction against layer compliance (Fig. 6)",
         [study.key, "mu"],
-        true,
+        (true, None),
     )?;
     push_curve_ends(&mut rep, &series, study.key);
     Ok(rep)
@@ -261,7 +269,7 @@ pub fn fig7(
         &series,
         "Friction against coating thickness (Fig. 7)",
         [study.key, "mu"],
-        true,
+        (true, None),
     )?;
     push_curve_ends(&mut rep, &series, study.key);
     rep.notes.push(
@@ -288,7 +296,7 @@ pub fn fig8(
         &series,
         "Friction against velocity (Fig. 8a)",
         [study.key, "mu"],
-        true,
+        (true, None),
     )?;
     // (b): linear minus nonlinear where both were solved.
     let linear_curve = &series[0];
@@ -317,7 +325,7 @@ pub fn fig8(
         &differences,
         "Linear minus nonlinear mu (Fig. 8b)",
         [study.key, "mu_linear - mu"],
-        true,
+        (true, None),
     )?;
     push_curve_ends(&mut rep, &series, study.key);
     for d in &differences {

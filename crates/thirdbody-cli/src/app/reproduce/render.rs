@@ -50,25 +50,39 @@ pub fn max_pressure(s: &Solution) -> f64 {
     s.summary().max_pressure
 }
 
-/// Stages a line plot (PNG + SVG) and its CSV; a plot along x (linear) is a profile
-/// that notes the sliding direction.
+/// Stages a line plot (PNG + SVG) and its CSV (all points); a plot along x (linear) is
+/// a profile that notes the sliding direction and, given the `contact`'s extent along
+/// x, frames it.
 pub fn line_figure(
     files: &mut FigureFiles,
     stem: &str,
     series: &[Series],
     title: &str,
     [x_label, y_label]: [&str; 2],
-    log_x: bool,
+    (log_x, contact): (bool, Option<(f64, f64)>),
 ) -> Result<()> {
     files.series_csv(&format!("{stem}.csv"), ["series", x_label, y_label], series)?;
     files.plot(stem, |p| {
         if x_label == L.x && !log_x {
             // A profile along the sliding direction.
-            plot::profile_plot(p, series, title, x_label, y_label)
+            plot::profile_plot(p, series, title, x_label, y_label, contact)
         } else {
             plot::line_plot(p, series, title, x_label, y_label, log_x)
         }
     })
+}
+
+/// The extent along x of the union of the solutions' contacts (cell edges).
+pub fn contact_x<'a, S>(solutions: impl IntoIterator<Item = &'a S>) -> Option<(f64, f64)>
+where
+    S: std::ops::Deref<Target = Solution> + 'a,
+{
+    solutions
+        .into_iter()
+        .map(|s| s.summary())
+        .filter(|s| s.contact_area > 0.0)
+        .map(|s| (s.contact_x_min, s.contact_x_max))
+        .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
 }
 
 /// Pressure along x on the cell row nearest y = 0.
@@ -96,12 +110,13 @@ pub fn sigma_x_row(f: &StressField, label: String, dashed: bool) -> Series {
     }
 }
 
-/// Stages the colour map (PNG + SVG) of `values` on the XZ section `f` and its data
-/// as `stem.csv` with columns `x', z', name`.
+/// Stages the colour map (PNG + SVG) of `values` on the XZ section `f` of a body with
+/// material interfaces at depths `interfaces`, and its data as `stem.csv` with columns
+/// `x', z', name`.
 pub fn xz_map(
     files: &mut FigureFiles,
     stem: &str,
-    f: &StressField,
+    (f, interfaces): (&StressField, &[f64]),
     values: &[f64],
     name: &str,
     title: &str,
@@ -117,6 +132,7 @@ pub fn xz_map(
             L.depth,
             &stress_label(name),
             10,
+            interfaces,
         )
     })?;
     let rows: Vec<Vec<f64>> = (0..f.zs.len())

@@ -9,7 +9,7 @@ use thirdbody::{Case, Solution};
 
 use super::catalogue::{self, parameter_line};
 use super::render::{
-    line_figure, max_pressure, number, report, sigma_x_row, stress_label, xz_map, L,
+    self, line_figure, max_pressure, number, report, sigma_x_row, stress_label, xz_map, L,
 };
 use super::solutions::Solutions;
 use super::{FigureFiles, FigureReport, Resolution};
@@ -57,6 +57,7 @@ pub fn fig9(
     let mut rep = report("Fig. 9", "sigma_x on the surface along x", line);
     let mut series = Vec::new();
     let results = stresses(solutions, &cases, &[SectionKind::Surface])?;
+    let contact = render::contact_x(&solutions.solve_each(&cases)?);
     for (d, stress) in deltas.iter().zip(&results) {
         let f = section::find(stress, SectionId::Surface)
             .ok_or_else(|| anyhow::anyhow!("no surface section"))?;
@@ -79,7 +80,7 @@ pub fn fig9(
         &series,
         "sigma_x on the surface, y = 0 (Fig. 9)",
         [L.x, &stress_label("sigma_x")],
-        false,
+        (false, contact),
     )?;
     rep.notes.push(
         "The paper: both the tensile and the compressive extremes grow with delta; the \
@@ -113,7 +114,7 @@ pub fn fig10(
         xz_map(
             files,
             &format!("fig10{panel}_tau1"),
-            f,
+            (f, &[]),
             &tau1,
             "tau1",
             &format!("tau1, delta = {d} (Fig. 10{panel})"),
@@ -189,7 +190,7 @@ pub fn fig11(
         xz_map(
             files,
             &format!("fig11{panel}_sigma_x"),
-            f,
+            (f, &p.nonlinear.body.model().interface_depths()),
             &f.components[0],
             "sigma_x",
             &format!("sigma_x, h1' = {h} (Fig. 11{panel})"),
@@ -275,7 +276,7 @@ pub fn fig12(
             &series,
             &format!("sigma_x, h1' = {h} (Fig. 12{panel})"),
             [L.x, &stress_label("sigma_x")],
-            false,
+            (false, None),
         )?;
     }
     rep.notes.push(

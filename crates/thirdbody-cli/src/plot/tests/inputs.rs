@@ -60,6 +60,7 @@ fn bad_input_is_refused_and_leaves_no_file() {
         "z",
         "s",
         3,
+        &[],
     ));
     assert!(e.contains("entry 2 is inf"), "{e}");
     let e = err(section_map(
@@ -72,6 +73,7 @@ fn bad_input_is_refused_and_leaves_no_file() {
         "z",
         "s",
         3,
+        &[],
     ));
     assert!(e.contains("strictly increasing"), "{e}");
 
@@ -177,6 +179,7 @@ fn write_samples() {
             "z/a",
             "τxz / p0",
             8,
+            &[],
         )
         .unwrap();
         let vm: Vec<f64> = zs
@@ -196,6 +199,7 @@ fn write_samples() {
             "z/a",
             "σvM / p0",
             6,
+            &[],
         )
         .unwrap();
         let big = Grid::centred(1024, 512, 1.0 / 256.0, [0.0, 0.0]).unwrap();

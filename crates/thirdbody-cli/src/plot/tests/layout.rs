@@ -13,8 +13,7 @@ use plotters::style::IntoFont;
 
 use super::*;
 use crate::plot::{
-    drawn_levels, line_plot, map::SECTION_FULL_RATIO, profile_plot, section_map, shown_depths,
-    Series, LINE_FLOOR, LOBE_CORE,
+    drawn_levels, line_plot, profile_plot, section_map, shown_depths, Series, LINE_FLOOR, LOBE_CORE,
 };
 
 mod data;
@@ -32,19 +31,21 @@ struct Drawn {
     texts: Vec<(String, PxBox)>,
     /// Legend backgrounds (white at 85 % opacity; drawn by line plots and maps).
     legends: Vec<PxBox>,
+    /// A map's plotting area (its first black frame), where every pixel is data.
+    frame: Option<PxBox>,
     /// Points of the series' lines (stroke width 2, drawn before the legend), keyed by
     /// stroke colour and whether the line is one polyline (solid) or pieces (dashes).
     series: Vec<(SeriesKey, Vec<(f64, f64)>)>,
 }
 
-fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
+pub(super) fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
     let key = format!(" {name}=\"");
     let start = tag.find(&key)? + key.len();
     let end = start + tag[start..].find('"')?;
     Some(&tag[start..end])
 }
 
-fn num(tag: &str, name: &str) -> f64 {
+pub(super) fn num(tag: &str, name: &str) -> f64 {
     attr(tag, name)
         .and_then(|v| v.parse().ok())
         .unwrap_or_else(|| panic!("attribute {name} in {tag}"))
@@ -92,6 +93,7 @@ fn read_svg(path: &Path) -> Drawn {
         size: (num(svg_tag, "width"), num(svg_tag, "height")),
         texts: Vec::new(),
         legends: Vec::new(),
+        frame: None,
         series: Vec::new(),
     };
     for piece in svg.split('<').skip(1) {
@@ -111,6 +113,13 @@ fn read_svg(path: &Path) -> Drawn {
             drawn
                 .legends
                 .push([x, y, x + num(&tag, "width"), y + num(&tag, "height")]);
+        } else if drawn.frame.is_none()
+            && tag.starts_with(" rect ")
+            && attr(&tag, "fill") == Some("none")
+            && attr(&tag, "stroke") == Some("#000000")
+        {
+            let (x, y) = (num(&tag, "x"), num(&tag, "y"));
+            drawn.frame = Some([x, y, x + num(&tag, "width"), y + num(&tag, "height")]);
         } else if tag.starts_with(" polyline ")
             && attr(&tag, "stroke-width") == Some("2")
             && drawn.legends.is_empty()
@@ -149,6 +158,16 @@ pub(super) fn layout_defects(path: &Path) -> Vec<String> {
         for (b, bb) in &d.texts[k + 1..] {
             if overlap(ba, bb) {
                 defects.push(format!("texts '{a}' {ba:?} and '{b}' {bb:?} overlap"));
+            }
+        }
+    }
+    // The extreme's label covers no data: it lies outside a map's plotting area.
+    if let Some(frame) = &d.frame {
+        for (text, b) in &d.texts {
+            if text.contains(" at (") && overlap(b, frame) {
+                defects.push(format!(
+                    "the extreme's label '{text}' {b:?} covers the plotting area {frame:?}"
+                ));
             }
         }
     }
@@ -264,6 +283,7 @@ fn no_plot_kind_overlaps_texts_or_covers_extremes_with_its_legend() {
         "sigma_x, h1' = 0.02 (Fig. 12b)",
         "x'",
         "sigma_x / E2",
+        None,
     )
     .unwrap();
     line_plot(
@@ -298,6 +318,7 @@ fn no_plot_kind_overlaps_texts_or_covers_extremes_with_its_legend() {
         "Pressure along x through the centre",
         "x'",
         "p'",
+        None,
     )
     .unwrap();
 
@@ -335,6 +356,7 @@ fn no_plot_kind_overlaps_texts_or_covers_extremes_with_its_legend() {
         "z' (depth)",
         "tau1 / E2",
         10,
+        &[],
     )
     .unwrap();
     paths.push(p);
@@ -349,6 +371,7 @@ fn no_plot_kind_overlaps_texts_or_covers_extremes_with_its_legend() {
         "z' (depth)",
         "sigma_x / E2",
         10,
+        &[0.02],
     )
     .unwrap();
     paths.push(p);
@@ -384,9 +407,12 @@ fn the_checks_see_overlapping_labels_and_a_covering_legend() {
          <polyline fill=\"none\" opacity=\"1\" stroke=\"#1F77B4\" stroke-width=\"2\" \
          points=\"100,300 500,200 860,70 \"/>\n\
          <rect x=\"613\" y=\"50\" width=\"266\" height=\"60\" opacity=\"0.85\" \
-         fill=\"#FFFFFF\" stroke=\"none\"/>\n</svg>",
+         fill=\"#FFFFFF\" stroke=\"none\"/>\n\
+         <rect x=\"100\" y=\"40\" width=\"700\" height=\"400\" fill=\"none\" \
+         stroke=\"#000000\"/>\n{}\n</svg>",
         t(400, "0.005"),
-        t(420, "0.006")
+        t(420, "0.006"),
+        t(300, "-0.00383 at (0.0468, 0)").replace("y=\"550\"", "y=\"38\"")
     );
     std::fs::write(&path, svg).unwrap();
     // The font is registered by any rendering.
@@ -399,6 +425,12 @@ fn the_checks_see_overlapping_labels_and_a_covering_legend() {
     );
     assert!(
         !defects.iter().any(|e| e.contains("smallest point")),
+        "{defects:?}"
+    );
+    assert!(
+        defects
+            .iter()
+            .any(|e| e.contains("label '-0.00383 at (0.0468, 0)'") && e.contains("covers")),
         "{defects:?}"
     );
 }
@@ -491,14 +523,13 @@ fn a_paper_section_shows_its_lines_without_specks_or_slivers_and_little_more() {
         "z' (depth)",
         "tau1 / E2",
         10,
+        &[],
     )
     .unwrap();
     let (frame, pieces) = frame_and_contours(&path);
     let (nx, nz) = (xs.len(), zs.len());
     let (lo, hi) = crate::plot::colour::min_max(&tau);
-    let cols = crate::plot::contours::Axis::from_centres(&xs);
-    let fill = SECTION_FULL_RATIO * (cols.last_edge - cols.first_edge);
-    let shown = shown_depths(&zs, nx, &tau, &drawn_levels(lo, hi, 10), fill);
+    let shown = shown_depths(&zs, nx, &tau, &drawn_levels(lo, hi, 10), &[]);
     assert!(shown < nz * 3 / 4, "{shown} of {nz} depths shown");
     let (cell_px, row_px) = (
         (frame[2] - frame[0]) / nx as f64,
@@ -537,8 +568,6 @@ fn a_paper_section_shows_its_lines_without_specks_or_slivers_and_little_more() {
 fn section_depths_hold_the_drawn_levels_and_deeper_maxima() {
     let (xs, zs, tau, sigma) = sections();
     let (nx, nz) = (xs.len(), zs.len());
-    let width = 0.13;
-    let fill = SECTION_FULL_RATIO * width;
     let row_reaches = |field: &[f64], k: usize, l: f64| {
         let row = &field[k * nx..(k + 1) * nx];
         if l > 0.0 {
@@ -561,7 +590,7 @@ fn section_depths_hold_the_drawn_levels_and_deeper_maxima() {
             "{levels:?}"
         );
         assert!(levels.iter().all(|l| l.abs() >= 0.1 * peak), "{levels:?}");
-        let shown = shown_depths(&zs, nx, field, &levels, fill);
+        let shown = shown_depths(&zs, nx, field, &levels, &[]);
         // Every row where a drawn level is reached is shown, with the next row.
         let deepest = (0..nz)
             .filter(|&k| levels.iter().any(|&l| row_reaches(field, k, l)))
@@ -571,8 +600,8 @@ fn section_depths_hold_the_drawn_levels_and_deeper_maxima() {
             shown >= deepest + 2,
             "{name}: {shown} rows, level reached at {deepest}"
         );
-        // Not much more: the margin (a tenth of the depth, two rows) or the filling.
-        let z_end = (1.1 * zs[deepest]).max(zs[0] + fill) + 2.0 * (zs[1] - zs[0]);
+        // Not much more: the margin (a tenth of the depth, two rows).
+        let z_end = 1.1 * zs[deepest] + 2.0 * (zs[1] - zs[0]);
         assert!(
             zs[shown - 1] <= z_end,
             "{name}: {shown} rows to z = {}",
@@ -593,25 +622,36 @@ fn section_depths_hold_the_drawn_levels_and_deeper_maxima() {
         }
     }
     let (lo, hi) = crate::plot::colour::min_max(&deep);
-    let shown = shown_depths(&zs, nx, &deep, &drawn_levels(lo, hi, 10), fill);
+    let shown = shown_depths(&zs, nx, &deep, &drawn_levels(lo, hi, 10), &[]);
     assert!(zs[shown - 1] > 0.12, "{shown} rows");
 
+    // An interface below where the field lives is shown, with the margin below it.
+    let (lo, hi) = crate::plot::colour::min_max(&sigma);
+    let levels = drawn_levels(lo, hi, 10);
+    let without = shown_depths(&zs, nx, &sigma, &levels, &[]);
+    let shown = shown_depths(&zs, nx, &sigma, &levels, &[0.1]);
+    assert!(zs[without - 1] < 0.1, "{without} rows");
+    assert!(zs[shown - 1] >= 0.1, "{shown} rows");
+    assert!(
+        zs[shown - 1] <= 0.11 + 2.0 * (zs[1] - zs[0]),
+        "{shown} rows"
+    );
+
     // A field still growing at the bottom keeps every row; a field confined to the
-    // surface row fills an equal-scale panel; a zero field keeps every row.
+    // surface row shows three rows (no blank rows below it); a zero field keeps every
+    // row.
     let growing: Vec<f64> = zs.iter().flat_map(|&z| xs.iter().map(move |_| z)).collect();
     let (lo, hi) = crate::plot::colour::min_max(&growing);
     assert_eq!(
-        shown_depths(&zs, nx, &growing, &drawn_levels(lo, hi, 10), fill),
+        shown_depths(&zs, nx, &growing, &drawn_levels(lo, hi, 10), &[]),
         nz
     );
     let surface: Vec<f64> = (0..nz * nx)
         .map(|n| if n < nx { -1.0 } else { 0.0 })
         .collect();
-    let shown = shown_depths(&zs, nx, &surface, &drawn_levels(-1.0, 0.0, 10), fill);
-    assert!(
-        zs[shown - 1] + 0.5 * (zs[1] - zs[0]) >= fill,
-        "{shown} rows"
+    assert_eq!(
+        shown_depths(&zs, nx, &surface, &drawn_levels(-1.0, 0.0, 10), &[]),
+        3
     );
-    assert!(zs[shown - 2] + 0.5 * (zs[1] - zs[0]) < fill, "{shown} rows");
-    assert_eq!(shown_depths(&zs, nx, &vec![0.0; nz * nx], &[], fill), nz);
+    assert_eq!(shown_depths(&zs, nx, &vec![0.0; nz * nx], &[], &[]), nz);
 }

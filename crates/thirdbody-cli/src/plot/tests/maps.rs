@@ -103,7 +103,7 @@ fn section_map_draws_depth_downward_and_marks_the_extreme() {
     // One sign, growing with depth: dark at the surface (top), bright at depth (bottom).
     let field: Vec<f64> = zs.iter().flat_map(|&z| xs.iter().map(move |_| z)).collect();
     let path = dir.path().join("depth.png");
-    section_map(&path, &xs, &zs, &field, "Depth", "x'", "z'", "z'", 4).unwrap();
+    section_map(&path, &xs, &zs, &field, "Depth", "x'", "z'", "z'", 4, &[]).unwrap();
     let img = decode(&path);
     let map_right = img.width() - crate::plot::colour::BAR_STRIP;
     let window = bbox(&img, map_right, |p| {
@@ -123,7 +123,7 @@ fn section_map_draws_depth_downward_and_marks_the_extreme() {
     // white in the middle.
     let field: Vec<f64> = zs.iter().flat_map(|_| xs.iter().copied()).collect();
     let path = dir.path().join("sign.png");
-    section_map(&path, &xs, &zs, &field, "Sign", "x'", "z'", "σxx'", 0).unwrap();
+    section_map(&path, &xs, &zs, &field, "Sign", "x'", "z'", "σxx'", 0, &[]).unwrap();
     let img = decode(&path);
     let y = (window[1] + window[3]) / 2 + 30;
     let left = img.get_pixel(window[0] + 2, y).0;
@@ -147,7 +147,7 @@ fn section_map_draws_depth_downward_and_marks_the_extreme() {
         })
         .collect();
     let path = dir.path().join("peak.png");
-    section_map(&path, &xs, &zs, &peak, "Peak", "x'", "z'", "s'", 0).unwrap();
+    section_map(&path, &xs, &zs, &peak, "Peak", "x'", "z'", "s'", 0, &[]).unwrap();
     let img = decode(&path);
     let (ww, wh) = (ww as f64, wh as f64);
     let px = window[0] as f64 + (0.525 + 1.5) / 3.0 * ww;
@@ -162,7 +162,7 @@ fn section_map_draws_depth_downward_and_marks_the_extreme() {
     });
     assert!(black_near, "no cross at ({px}, {py})");
     let svg = dir.path().join("peak.svg");
-    section_map(&svg, &xs, &zs, &peak, "Peak", "x'", "z'", "s'", 0).unwrap();
+    section_map(&svg, &xs, &zs, &peak, "Peak", "x'", "z'", "s'", 0, &[]).unwrap();
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.contains("1.00 at (0.525, 1.2"), "annotation missing");
     assert_eq!(
@@ -207,6 +207,7 @@ fn constant_and_zero_fields_draw_one_flat_colour() {
         "z",
         "s",
         5,
+        &[],
     )
     .unwrap();
     let path = dir.path().join("flat_line.png");
@@ -218,4 +219,90 @@ fn constant_and_zero_fields_draw_one_flat_colour() {
     };
     line_plot(&path, &[s], "Flat", "x", "y", true).unwrap();
     assert_eq!(listing(dir.path()).len(), 4);
+}
+
+#[test]
+fn sections_draw_their_interfaces_and_show_where_the_field_lives() {
+    // A thin-coating sigma_x: compression in a layer 0.01 deep under a contact 0.06
+    // long in a section 0.13 wide and 0.16 deep, the interface at 0.02.
+    let dir = tempfile::tempdir().unwrap();
+    let xs: Vec<f64> = (0..64)
+        .map(|i| -0.043 + (i as f64 + 0.5) * 0.13 / 64.0)
+        .collect();
+    let zs: Vec<f64> = (0..64).map(|k| k as f64 * 0.0025).collect();
+    let field: Vec<f64> = zs
+        .iter()
+        .flat_map(|&z| {
+            xs.iter().map(move |&x| {
+                let d = (-((x - 0.03) / 0.02).powi(2)).exp();
+                -3e-3 * d * (-(z / 0.004)).exp()
+            })
+        })
+        .collect();
+    let interface = 0.02;
+    let (lo, hi) = crate::plot::colour::min_max(&field);
+    let frame_of = |img: &RgbImage| {
+        // Rows of the map that are dark over half its width (an anti-aliased line of
+        // width 1 is two rows of mid grey).
+        let map_right = img.width() - crate::plot::colour::BAR_STRIP;
+        let dark = |p: [u8; 3]| p.iter().all(|&c| c < 150);
+        (0..img.height())
+            .filter(|&y| {
+                (0..map_right)
+                    .filter(|&x| dark(img.get_pixel(x, y).0))
+                    .count()
+                    > 300
+            })
+            .collect::<Vec<u32>>()
+    };
+    for (name, interfaces) in [("with.png", vec![interface]), ("without.png", vec![])] {
+        let path = dir.path().join(name);
+        section_map(
+            &path,
+            &xs,
+            &zs,
+            &field,
+            "s",
+            "x'",
+            "z'",
+            "s",
+            10,
+            &interfaces,
+        )
+        .unwrap();
+        let img = decode(&path);
+        let rows = frame_of(&img);
+        // Rows that are mostly dark: the frame's top and bottom, and the interface.
+        let (top, bottom) = (rows[0], *rows.last().unwrap());
+        let inner: Vec<u32> = rows
+            .iter()
+            .copied()
+            .filter(|&y| y > top + 3 && y + 3 < bottom)
+            .collect();
+        let shown = crate::plot::shown_depths(
+            &zs,
+            xs.len(),
+            &field,
+            &crate::plot::drawn_levels(lo, hi, 10),
+            &interfaces,
+        );
+        let (z_top, z_bottom) = (zs[0] - 0.00125, zs[shown - 1] + 0.00125);
+        let expected =
+            top as f64 + (interface - z_top) / (z_bottom - z_top) * (bottom - top) as f64;
+        if interfaces.is_empty() {
+            assert!(inner.is_empty(), "{name}: dark rows {inner:?}");
+            // Where the field lives: its lowest drawn level is reached above z = 0.01;
+            // the picture ends well above the section's bottom 0.16.
+            assert!(z_bottom < 0.02, "{name}: shown to {z_bottom}");
+        } else {
+            assert!(
+                inner.iter().any(|&y| (y as f64 - expected).abs() <= 2.0),
+                "{name}: no interface line at pixel row {expected}: dark rows {inner:?}"
+            );
+            assert!(
+                z_bottom >= interface && z_bottom < 0.03,
+                "{name}: shown to {z_bottom}"
+            );
+        }
+    }
 }
