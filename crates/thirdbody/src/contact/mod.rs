@@ -540,7 +540,37 @@ pub fn solve_problem(
                     params.parallelism,
                 );
             }
-            let mut r = newton::semismooth_newton(problem, &mut p, params, observer)?;
+            // A warm start begins from the warm pressure's edges (with the approach
+            // that closes its mean gap); should that solve fail, from the same
+            // pressure with the edges on the cells' faces.
+            let mut fallback = None;
+            if !cold && problem.layer.as_ref().is_some_and(|l| l.places_edges()) {
+                let mut gap = gap_at(problem, &p, 0.0);
+                let (sum, count) = p
+                    .iter()
+                    .zip(&gap)
+                    .filter(|(&v, _)| v > 0.0)
+                    .fold((0.0, 0.0), |(s, c), (_, g)| (s + g, c + 1.0));
+                let approach = sum / f64::max(count, 1.0);
+                gap.iter_mut().for_each(|g| *g -= approach);
+                let placed = problem.layer.as_ref().and_then(|l| l.relocated(&p, &gap));
+                if let Some(layer) = placed {
+                    let faces = problem.layer.replace(layer);
+                    fallback = faces.map(|faces| (faces, p.clone()));
+                }
+            }
+            let mut r = match newton::semismooth_newton(problem, &mut p, params, observer) {
+                Ok(r) => r,
+                Err(Error::Interrupted) => return Err(Error::Interrupted),
+                Err(e) => match fallback {
+                    Some((faces, warm)) => {
+                        problem.layer = Some(faces);
+                        p = warm;
+                        newton::semismooth_newton(problem, &mut p, params, observer)?
+                    }
+                    None => return Err(e),
+                },
+            };
             // A layer whose response depends on where each contact's leading edge
             // falls inside its cell is solved again with the edges of the last
             // solution until they stay put.
@@ -548,8 +578,18 @@ pub fn solve_problem(
                 let gap = gap_at(problem, &p, r.approach);
                 let moved = problem.layer.as_ref().and_then(|l| l.relocated(&p, &gap));
                 let Some(layer) = moved else { break };
-                problem.layer = Some(layer);
-                let again = newton::semismooth_newton(problem, &mut p, params, observer)?;
+                let placed = problem.layer.replace(layer);
+                let before = p.clone();
+                let again = match newton::semismooth_newton(problem, &mut p, params, observer) {
+                    Ok(again) => again,
+                    Err(Error::Interrupted) => return Err(Error::Interrupted),
+                    Err(_) => {
+                        // The last converged solution stands, with its edges.
+                        problem.layer = placed;
+                        p = before;
+                        break;
+                    }
+                };
                 r.history.extend(again.history);
                 r = SolveReport {
                     iterations: r.iterations + again.iterations,

@@ -87,6 +87,10 @@ pub trait LayerResponse: std::fmt::Debug + Send + Sync {
     fn relocated(&self, _p: &[f64], _gap: &[f64]) -> Option<Box<dyn LayerResponse>> {
         None
     }
+    /// Whether [`LayerResponse::relocated`] can ever return a response.
+    fn places_edges(&self) -> bool {
+        false
+    }
     /// The contacts' edges along x this response places inside their cells (none
     /// by default): there the pressure a cell carries on average differs from its
     /// centre value ([`cell_mean_pressure`]).

@@ -64,10 +64,15 @@
 //! `e^(-x) w_{i+1} + (1 - e^(-y)) F_i - d theta entry_lag(y)`, `y = theta x`, with
 //! neither upwind term nor centred slope there, and the upstream neighbour's slope
 //! stops at the edge. The cell's mean pressure, which the body and the load see, is
-//! the integral of the pressure from the edge ([`super::ContactEdge`]); trailing
-//! edges, where the pressure falls continuously to zero, are located from the
-//! pressures the same way, which keeps the two ends of a contact alike (the
-//! friction of a nearly relaxed layer is the small difference between them).
+//! the integral of the pressure from the edge ([`super::ContactEdge`]). Trailing
+//! edges, where the pressure falls continuously to zero, are placed where the
+//! pressure's line through the last two centres reaches zero while a branch lags
+//! (it leaves the free gap a kink there), and where the free gap closes, as leading
+//! edges are, once the branches relax within a few cells: the two ends of a contact
+//! then have the same errors, which cancel in the friction of a nearly relaxed
+//! layer (the small difference between them). No edges are placed where every
+//! branch is frozen (infinite speed) or relaxed within a cell to the last double:
+//! the layer is then a spring bed, and its contact the spring bed's.
 //!
 //! For the paper's Maxwell layer (`C_g = C_v = C[0]`, no branches) this is exactly
 //! the sum of paper eq. 8 read with the loaded cell's compliance (`secant`) or its
@@ -257,10 +262,11 @@ fn next_edges(
     (edges, settled)
 }
 
-/// Creep lengths, in cells, below which a branch is taken as relaxed at the
-/// contact's edges: located edges fade as `exp(-h / (V tau RELAXED_CELLS))` (module
-/// docs).
-const RELAXED_CELLS: f64 = 1e3;
+/// Cells per creep length over which trailing edges go from being placed by the
+/// pressure's line (a lagging branch: the free gap has a kink there) to being placed
+/// by the free gap, as leading edges are (a relaxed layer: the two ends alike, so
+/// that their errors cancel in the friction, which is then small).
+const TRAILING_CELLS: f64 = 10.0;
 
 /// One Kelvin–Voigt branch on the grid.
 #[derive(Debug, Clone, Copy)]
@@ -429,9 +435,14 @@ pub struct ViscoelasticRows {
     /// Per edge of `edge_list`, the theta of the solve before and the edge located
     /// on it (NaN when it was in another cell): the relocation's secant steps.
     edge_history: Vec<(f64, f64)>,
-    /// How far the contacts' edges are located inside their cells, 0 (at the
-    /// faces: no branch lags across a cell) to 1 (module docs).
-    edge_share: f64,
+    /// Whether the contacts' edges are placed inside their cells: some branch moves
+    /// and carries something across a cell (not frozen, V = inf; not relaxed within
+    /// a cell to the last double).
+    locates_edges: bool,
+    /// The share of a trailing edge placed by the pressure's line (the rest by the
+    /// free gap, as leading edges are): `sum_k C_k e^(-h / (V tau_k TRAILING_CELLS))
+    /// / sum_k C_k` (module docs).
+    trailing_by_pressure: f64,
 }
 
 impl ViscoelasticRows {
@@ -488,11 +499,21 @@ impl ViscoelasticRows {
             entries: Vec::new(),
             edge_list: Vec::new(),
             edge_history: Vec::new(),
-            edge_share: branches
+            locates_edges: branches
                 .iter()
-                .filter(|b| b.cells_per_creep_length > 0.0)
-                .map(|b| (-b.cells_per_creep_length / RELAXED_CELLS).exp())
-                .fold(0.0, f64::max),
+                .any(|b| b.cells_per_creep_length > 0.0 && b.keep_half > 0.0),
+            trailing_by_pressure: {
+                let total: f64 = branches.iter().map(|b| b.scale).sum();
+                let lagging: f64 = branches
+                    .iter()
+                    .map(|b| b.scale * (-b.cells_per_creep_length / TRAILING_CELLS).exp())
+                    .sum();
+                if total > 0.0 {
+                    lagging / total
+                } else {
+                    0.0
+                }
+            },
             lag_half,
             upwind,
             branch_own,
@@ -814,42 +835,50 @@ impl ViscoelasticRows {
 
     /// Where each contact enters its first loaded cell (module docs), from a
     /// solution's pressure and gap; `None` for a layer without branches.
-    fn entries_of(&self, p: &[f64], gap: &[f64]) -> Option<Vec<f64>> {
-        if self.edge_share == 0.0 || p.len() != self.nx * self.ny || gap.len() != p.len() {
+    fn entries_of(&self, p: &[f64], gap: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        if !self.locates_edges || p.len() != self.nx * self.ny || gap.len() != p.len() {
             return None;
         }
-        let located = |theta: f64| (0.5 + self.edge_share * (theta - 0.5)).max(MIN_ENTRY);
         let nx = self.nx;
         let mut entries = vec![0.0; p.len()];
+        let mut exits = vec![0.0; p.len()];
         entries
             .par_chunks_mut(nx)
+            .zip(exits.par_chunks_mut(nx))
             .zip(p.par_chunks(nx).zip(gap.par_chunks(nx)))
             .enumerate()
             .with_min_len(self.passes.min_rows(nx))
             .for_each_init(
                 || (vec![0.0; self.branches.len()], vec![0.0; nx], vec![0.0; nx]),
-                |(state, w, free), (r, (theta, (prow, grow)))| {
+                |(state, w, free), (r, ((theta, exit), (prow, grow)))| {
                     self.sweep_row(prow, self.row_entries(r), state, w, Some(free));
+                    // The free gap (the gap less the layer's response to the cell's own
+                    // load) closes between an open centre and the loaded one next to it:
+                    // quadratically through a second open cell beyond when there is
+                    // one, else linearly.
+                    let closure = |i: usize, open: usize, further: Option<usize>| {
+                        let taken = (w[i] - free[i]).max(0.0);
+                        let near = grow[open].max(0.0);
+                        let far = further
+                            .filter(|&k| prow[k] <= 0.0)
+                            .map(|k| grow[k].max(0.0));
+                        if taken + near > 0.0 {
+                            gap_closure(-taken, near, far).max(MIN_ENTRY)
+                        } else {
+                            0.5
+                        }
+                    };
                     for i in 0..nx - 1 {
                         if prow[i] > 0.0 && prow[i + 1] <= 0.0 {
-                            // The free gap (the gap less the layer's response to
-                            // the cell's own load) closes between the open upstream
-                            // centre and this one: quadratically through a second
-                            // open cell upstream when there is one, else linearly.
-                            let taken = (w[i] - free[i]).max(0.0);
-                            let open = grow[i + 1].max(0.0);
-                            let further =
-                                (i + 2 < nx && prow[i + 2] <= 0.0).then(|| grow[i + 2].max(0.0));
-                            theta[i] = if taken + open > 0.0 {
-                                located(gap_closure(-taken, open, further))
-                            } else {
-                                0.5
-                            };
+                            theta[i] = closure(i, i + 1, (i + 2 < nx).then_some(i + 2));
+                        }
+                        if i > 0 && prow[i] > 0.0 && prow[i - 1] <= 0.0 && prow[i + 1] > 0.0 {
+                            exit[i] = closure(i, i - 1, i.checked_sub(2));
                         }
                     }
                 },
             );
-        Some(entries)
+        Some((entries, exits))
     }
 
     /// Cells along x.
@@ -1184,7 +1213,7 @@ impl LayerResponse for ViscoelasticRows {
     }
 
     fn relocated(&self, p: &[f64], gap: &[f64]) -> Option<Box<dyn LayerResponse>> {
-        let entries = self.entries_of(p, gap)?;
+        let (entries, exits) = self.entries_of(p, gap)?;
         let nx = self.nx;
         let mut edges = Vec::new();
         for (cell, &theta) in entries.iter().enumerate() {
@@ -1203,15 +1232,19 @@ impl LayerResponse for ViscoelasticRows {
             {
                 // A trailing edge: the pressure falls to zero continuously there,
                 // where its line through this centre and the upstream one crosses
-                // zero. Locating it too keeps the two ends of a contact alike (a
-                // relaxed layer's friction is the small difference of the two).
+                // zero (a lagging branch leaves the free gap a kink at the edge);
+                // where the branches relax within a few cells, where the free gap
+                // closes, as at the leading edge, so that the two ends of a contact
+                // are alike (a relaxed layer's friction is the small difference of
+                // the two).
                 let fall = p[cell + 1] - p[cell];
-                let theta = if fall > 0.0 {
+                let by_pressure = if fall > 0.0 {
                     (p[cell] / fall).min(1.0)
                 } else {
                     1.0
                 };
-                let theta = (0.5 + self.edge_share * (theta - 0.5)).max(MIN_ENTRY);
+                let w = self.trailing_by_pressure;
+                let theta = (w * by_pressure + (1.0 - w) * exits[cell]).max(MIN_ENTRY);
                 edges.push(ContactEdge {
                     cell,
                     neighbour: Some(cell + 1),
@@ -1256,6 +1289,10 @@ impl LayerResponse for ViscoelasticRows {
 
     fn contact_edges(&self) -> &[ContactEdge] {
         &self.edge_list
+    }
+
+    fn places_edges(&self) -> bool {
+        self.locates_edges
     }
 }
 
