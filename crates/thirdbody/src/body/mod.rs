@@ -11,6 +11,7 @@ pub mod coated;
 mod coated_radial;
 pub mod coated_stress;
 pub mod homogeneous;
+pub mod layered;
 pub(crate) mod quadrature;
 
 use std::sync::Arc;
