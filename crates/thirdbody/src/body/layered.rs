@@ -856,4 +856,106 @@ mod tests {
         }
         eprintln!("one layer vs coated stresses: worst difference {worst:.1e} p");
     }
+
+    /// Boussinesq's response of a half-space to `p = cos k xi` (module doc of
+    /// coated_stress): `[T_xixi, T_etaeta, T_zz, T_xiz / i]` and
+    /// `W = (2 (1 - nu) + kz) e^{-kz} / (2 mu k)`.
+    fn boussinesq(m: Elastic, k: f64, z: f64) -> ([f64; 4], f64) {
+        let (kz, nu) = (k * z, m.poisson);
+        let e = (-kz).exp();
+        let mu = m.young / (2.0 * (1.0 + nu));
+        (
+            [-(1.0 - kz) * e, -2.0 * nu * e, -(1.0 + kz) * e, kz * e],
+            (2.0 * (1.0 - nu) + kz) * e / (2.0 * mu * k),
+        )
+    }
+
+    #[test]
+    fn identical_layers_are_the_half_space() {
+        let m = elastic(2.0, 0.3);
+        let mut worst: f64 = 0.0;
+        for n in [1, 3, 8] {
+            let stack = Stack {
+                layers: (0..n)
+                    .map(|i| ply(2.0, 0.3, 0.1 + 0.3 * i as f64))
+                    .collect(),
+                base: Base::HalfSpace(m),
+            };
+            let depths = stack.interface_depths();
+            let mut solver = LayeredSolver::new(&stack).unwrap();
+            for k in log_space(1e-3, 1e3, 25) {
+                let a = solver.surface_factor(k);
+                worst = worst.max((a - 1.0).abs());
+                assert!((a - 1.0).abs() < 1e-12, "{n} layers, k = {k}: A = {a}");
+                for layer in 0..=n {
+                    let top = if layer == 0 { 0.0 } else { depths[layer - 1] };
+                    let bottom = depths.get(layer).copied().unwrap_or(top + 2.0);
+                    for f in [0.0, 0.3, 1.0] {
+                        let z = top + f * (bottom - top);
+                        let r = solver.plane_response(k, layer, z);
+                        let (stress, w) = boussinesq(m, k, z);
+                        for q in 0..4 {
+                            worst = worst.max((r.stress[q] - stress[q]).abs());
+                            assert!(
+                                (r.stress[q] - stress[q]).abs() < 1e-12,
+                                "{n} layers, k = {k}, z = {z}, {q}: {} vs {}",
+                                r.stress[q],
+                                stress[q]
+                            );
+                        }
+                        let w0 = boussinesq(m, k, 0.0).1;
+                        assert!((r.w - w).abs() < 1e-12 * w0, "w at {z}: {} vs {w}", r.w);
+                    }
+                }
+            }
+        }
+        eprintln!("identical layers vs Boussinesq: worst {worst:.1e}");
+    }
+
+    #[test]
+    fn splitting_a_layer_changes_nothing() {
+        let whole = Stack {
+            layers: vec![ply(5.0, 0.2, 0.3), ply(0.5, 0.4, 0.5)],
+            base: Base::HalfSpace(elastic(1.0, 0.3)),
+        };
+        let split = Stack {
+            layers: vec![ply(5.0, 0.2, 0.1), ply(5.0, 0.2, 0.2), ply(0.5, 0.4, 0.5)],
+            base: Base::HalfSpace(elastic(1.0, 0.3)),
+        };
+        for base in [
+            Base::HalfSpace(elastic(1.0, 0.3)),
+            Base::Rigid(BaseContact::Bonded),
+            Base::Rigid(BaseContact::Frictionless),
+        ] {
+            let mut a = LayeredSolver::new(&Stack {
+                base,
+                ..whole.clone()
+            })
+            .unwrap();
+            let mut b = LayeredSolver::new(&Stack {
+                base,
+                ..split.clone()
+            })
+            .unwrap();
+            for k in log_space(1e-3, 1e3, 19) {
+                let (fa, fb) = (a.surface_factor(k), b.surface_factor(k));
+                assert!((fa - fb).abs() < 1e-12 * fa, "k = {k}: {fa} vs {fb}");
+                // Depths in the whole stack's layer 0 / 1 and the split one's 0, 1 / 2.
+                for (za, la, lb) in [(0.05, 0, 0), (0.1, 0, 1), (0.2, 0, 1), (0.6, 1, 2)] {
+                    let (ra, rb) = (a.plane_response(k, la, za), b.plane_response(k, lb, za));
+                    for q in 0..4 {
+                        assert!(
+                            (ra.stress[q] - rb.stress[q]).abs() < 1e-12,
+                            "k = {k}, z = {za}, {q}: {} vs {}",
+                            ra.stress[q],
+                            rb.stress[q]
+                        );
+                    }
+                    let scale = a.plane_response(k, 0, 0.0).w.abs();
+                    assert!((ra.w - rb.w).abs() < 1e-12 * scale);
+                    assert!((ra.u_xi - rb.u_xi).abs() < 1e-12 * scale);
+                }
+            }
+        }
+    }
 }
