@@ -958,4 +958,284 @@ mod tests {
             }
         }
     }
+
+    /// Dense Gaussian elimination with partial pivoting (test oracle).
+    fn solve_dense(mut m: Vec<Vec<f64>>, mut r: Vec<f64>) -> Vec<f64> {
+        let n = r.len();
+        for c in 0..n {
+            let p = (c..n)
+                .max_by(|&i, &j| m[i][c].abs().total_cmp(&m[j][c].abs()))
+                .unwrap();
+            m.swap(c, p);
+            r.swap(c, p);
+            for i in c + 1..n {
+                let f = m[i][c] / m[c][c];
+                for j in c..n {
+                    m[i][j] -= f * m[c][j];
+                }
+                r[i] -= f * r[c];
+            }
+        }
+        let mut x = vec![0.0; n];
+        for i in (0..n).rev() {
+            let s: f64 = (i + 1..n).map(|j| m[i][j] * x[j]).sum();
+            x[i] = (r[i] - s) / m[i][i];
+        }
+        x
+    }
+
+    /// The second method: the Papkovich–Neuber potentials of every layer in one
+    /// dense boundary-value system, in the basis of coated_stress.rs (`e^{-(kz -
+    /// k z_top)}`, `e^{kz - k z_bottom}`, psi multiplied by the absolute `kz`), solved
+    /// with partial pivoting. Fine for moderate k times the depths.
+    struct Dense {
+        materials: Vec<Elastic>,
+        tops: Vec<f64>,
+        base: Base,
+        k: f64,
+        x: Vec<f64>,
+    }
+
+    impl Dense {
+        fn new(stack: &Stack, k: f64) -> Self {
+            let n = stack.layers.len();
+            let mut materials: Vec<Elastic> = stack.layers.iter().map(|p| p.material).collect();
+            let mut tops = vec![0.0];
+            for p in &stack.layers {
+                tops.push(tops.last().unwrap() + p.thickness);
+            }
+            if let Base::HalfSpace(m) = stack.base {
+                materials.push(m);
+            }
+            let mut dense = Dense {
+                materials,
+                tops,
+                base: stack.base,
+                k,
+                x: Vec::new(),
+            };
+            let unknowns = 4 * n + if n < dense.materials.len() { 2 } else { 0 };
+            let mut m = Vec::new();
+            let mut r = Vec::new();
+            let row = |dense: &Dense, body: usize, z: f64, q: usize, scale: f64| {
+                let mut out = vec![0.0; unknowns];
+                for (j, v) in dense.rows(body, z)[q].iter().enumerate() {
+                    out[4 * body + j] = v * scale;
+                }
+                out
+            };
+            m.push(row(&dense, 0, 0.0, 2, 1.0));
+            r.push(-1.0);
+            m.push(row(&dense, 0, 0.0, 3, 1.0));
+            r.push(0.0);
+            for i in 0..n {
+                let z = dense.tops[i + 1];
+                if i + 1 < dense.materials.len() {
+                    for q in 0..4 {
+                        let (s1, s2) = if q < 2 {
+                            (1.0 / dense.mu(i), 1.0 / dense.mu(i + 1))
+                        } else {
+                            (1.0, 1.0)
+                        };
+                        let upper = row(&dense, i, z, q, s1);
+                        let lower = row(&dense, i + 1, z, q, s2);
+                        m.push(upper.iter().zip(&lower).map(|(a, b)| a - b).collect());
+                        r.push(0.0);
+                    }
+                } else {
+                    let conditions = match dense.base {
+                        Base::Rigid(BaseContact::Bonded) => [0, 1],
+                        _ => [1, 3],
+                    };
+                    for q in conditions {
+                        m.push(row(&dense, i, z, q, 1.0));
+                        r.push(0.0);
+                    }
+                }
+            }
+            dense.x = solve_dense(m, r);
+            dense
+        }
+
+        fn mu(&self, body: usize) -> f64 {
+            let m = self.materials[body];
+            m.young / (2.0 * (1.0 + m.poisson))
+        }
+
+        /// (is_psi, value, d/dzeta factor) of the body's basis at depth z.
+        fn basis(&self, body: usize, z: f64) -> Vec<(bool, f64, f64)> {
+            let k = self.k;
+            let down = (-k * (z - self.tops[body])).exp();
+            if body + 1 < self.tops.len() {
+                let up = (k * (z - self.tops[body + 1])).exp();
+                vec![
+                    (false, down, -1.0),
+                    (false, up, 1.0),
+                    (true, down, -1.0),
+                    (true, up, 1.0),
+                ]
+            } else {
+                vec![(false, down, -1.0), (true, down, -1.0)]
+            }
+        }
+
+        /// `[2 mu u_xi / i, 2 mu w, sigma_zz, tau_xiz / i]`-rows per basis function
+        /// (coated_stress.rs's `quantities`, per unit p / k^2).
+        fn rows(&self, body: usize, z: f64) -> [Vec<f64>; 4] {
+            let nu = self.materials[body].poisson;
+            let zeta = self.k * z;
+            let g = 3.0 - 4.0 * nu;
+            let mut q: [Vec<f64>; 4] = Default::default();
+            for (psi, v, d) in self.basis(body, z) {
+                let column = if psi {
+                    [
+                        zeta * v,
+                        zeta * d * v - g * v,
+                        zeta * v - 2.0 * (1.0 - nu) * d * v,
+                        zeta * d * v - (1.0 - 2.0 * nu) * v,
+                    ]
+                } else {
+                    [v, d * v, v, d * v]
+                };
+                for (row, value) in q.iter_mut().zip(column) {
+                    row.push(value);
+                }
+            }
+            q
+        }
+
+        /// `([T_xixi, T_etaeta, T_zz, T_xiz / i], u_xi / i, w)` at depth z in `body`.
+        fn response(&self, body: usize, z: f64) -> ([f64; 4], f64, f64) {
+            let nu = self.materials[body].poisson;
+            let zeta = self.k * z;
+            let c = &self.x[4 * body..];
+            let (mut phi, mut dphi, mut psi, mut dpsi) = (0.0, 0.0, 0.0, 0.0);
+            for (&c, (is_psi, v, d)) in c.iter().zip(self.basis(body, z)) {
+                if is_psi {
+                    psi += c * v;
+                    dpsi += c * d * v;
+                } else {
+                    phi += c * v;
+                    dphi += c * d * v;
+                }
+            }
+            let stress = [
+                -phi - zeta * psi - 2.0 * nu * dpsi,
+                -2.0 * nu * dpsi,
+                phi + zeta * psi - 2.0 * (1.0 - nu) * dpsi,
+                dphi + zeta * dpsi - (1.0 - 2.0 * nu) * psi,
+            ];
+            let two_mu_k = 2.0 * self.mu(body) * self.k;
+            let u = (phi + zeta * psi) / two_mu_k;
+            let w = (dphi + zeta * dpsi - (3.0 - 4.0 * nu) * psi) / two_mu_k;
+            (stress, u, w)
+        }
+    }
+
+    const BASES: [Base; 3] = [
+        Base::HalfSpace(Elastic {
+            young: 1.0,
+            poisson: 0.3,
+        }),
+        Base::Rigid(BaseContact::Bonded),
+        Base::Rigid(BaseContact::Frictionless),
+    ];
+
+    /// Compares the solver with the dense method at `k`: A relative, stresses
+    /// absolute (per unit p), displacements relative to w(0); returns the worst.
+    fn against_dense(stack: &Stack, k: f64, tol: f64) -> f64 {
+        let dense = Dense::new(stack, k);
+        let mut solver = LayeredSolver::new(stack).unwrap();
+        let a = solver.surface_factor(k);
+        let top = stack.top_material();
+        let expected =
+            dense.response(0, 0.0).2 * k * top.young / (2.0 * (1.0 - top.poisson.powi(2)));
+        let mut worst = ((a - expected) / expected).abs();
+        assert!(worst < tol, "{stack:?} k = {k}: A = {a} vs {expected}");
+        let w0 = dense.response(0, 0.0).2.abs();
+        let n = stack.layers.len();
+        let bodies = n + usize::from(matches!(stack.base, Base::HalfSpace(_)));
+        for body in 0..bodies {
+            let z0 = dense.tops[body];
+            let h = if body < n {
+                stack.layers[body].thickness
+            } else {
+                1.0
+            };
+            for f in [0.0, 0.25, 0.5, 0.9, 1.0] {
+                let z = z0 + f * h;
+                let (stress, u, w) = dense.response(body, z);
+                let r = solver.plane_response(k, body, z);
+                for q in 0..4 {
+                    let e = (r.stress[q] - stress[q]).abs();
+                    worst = worst.max(e);
+                    assert!(
+                        e < tol,
+                        "k = {k}, body {body}, z = {z}, {q}: {} vs {}",
+                        r.stress[q],
+                        stress[q]
+                    );
+                }
+                let e = (r.u_xi - u).abs().max((r.w - w).abs()) / w0;
+                worst = worst.max(e);
+                assert!(
+                    e < tol,
+                    "k = {k}, body {body}, z = {z}: u {} vs {u}, w {} vs {w}",
+                    r.u_xi,
+                    r.w
+                );
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn three_layers_agree_with_the_dense_boundary_value_problem() {
+        let layers = vec![ply(3.0, 0.25, 0.4), ply(0.2, 0.4, 0.3), ply(8.0, 0.15, 0.6)];
+        let mut worst: f64 = 0.0;
+        for base in BASES {
+            let stack = Stack {
+                layers: layers.clone(),
+                base,
+            };
+            for k in [0.05, 0.3, 1.0, 2.5, 6.0] {
+                worst = worst.max(against_dense(&stack, k, 1e-10));
+            }
+        }
+        eprintln!("three layers vs dense: worst {worst:.1e}");
+    }
+
+    #[test]
+    fn near_incompressible_layers_on_a_rigid_base_are_finite_and_agree() {
+        let mut worst: f64 = 0.0;
+        for nu in [0.49, 0.499] {
+            for layers in [
+                vec![ply(1.0, nu, 0.5)],
+                vec![ply(2.0, 0.3, 0.2), ply(1.0, nu, 0.5), ply(0.1, nu, 0.3)],
+            ] {
+                for contact in [BaseContact::Bonded, BaseContact::Frictionless] {
+                    let stack = Stack {
+                        layers: layers.clone(),
+                        base: Base::Rigid(contact),
+                    };
+                    for k in [0.05, 0.4, 2.0, 5.0] {
+                        worst = worst.max(against_dense(&stack, k, 1e-10));
+                    }
+                    let mut solver = LayeredSolver::new(&stack).unwrap();
+                    // One layer on a rigid base is stiffer than its own half-space; the
+                    // stack's soft lower layers make it more compliant than its top's.
+                    let most = if layers.len() == 1 {
+                        1.0 + 1e-12
+                    } else {
+                        100.0
+                    };
+                    for k in log_space(1e-6, 1e6, 49) {
+                        let a = solver.surface_factor(k);
+                        assert!(a.is_finite() && a > 0.0 && a <= most, "nu {nu}, k {k}: {a}");
+                    }
+                }
+            }
+        }
+        eprintln!("near-incompressible vs dense: worst {worst:.1e}");
+    }
 }
