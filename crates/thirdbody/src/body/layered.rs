@@ -1238,4 +1238,313 @@ mod tests {
         }
         eprintln!("near-incompressible vs dense: worst {worst:.1e}");
     }
+
+    /// `E_top / (2 (1 - nu_top^2))`: A = that times k W per unit p.
+    fn normaliser(m: Elastic) -> f64 {
+        m.young / (2.0 * (1.0 - m.poisson * m.poisson))
+    }
+
+    #[test]
+    fn long_waves_on_a_half_space_see_the_base_and_short_waves_the_top_layer() {
+        let base = elastic(1.0, 0.35);
+        for layers in [
+            vec![ply(100.0, 0.2, 0.3)],
+            vec![ply(0.01, 0.45, 0.3)],
+            vec![ply(3.0, 0.25, 0.4), ply(0.2, 0.4, 0.3), ply(8.0, 0.15, 0.6)],
+        ] {
+            let stack = Stack {
+                layers,
+                base: Base::HalfSpace(base),
+            };
+            let top = stack.top_material();
+            let alone = top.young * (1.0 - base.poisson.powi(2))
+                / (base.young * (1.0 - top.poisson.powi(2)));
+            let LongWave::Factor(limit) = stack.long_wave_limit() else {
+                panic!("a half-space base has a factor at k = 0");
+            };
+            assert!((limit - alone).abs() < 1e-14 * alone);
+            let mut solver = LayeredSolver::new(&stack).unwrap();
+            let a = solver.surface_factor(1e-9);
+            assert!((a - alone).abs() < 1e-6 * alone, "{a} vs {alone}");
+            // Top layer 60 wavelengths / 2 pi thick: A - 1 ~ t^2 e^{-2t} < 1e-48.
+            let k = 60.0 / stack.layers[0].thickness;
+            assert!((solver.surface_factor(k) - 1.0).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn long_waves_on_a_rigid_base_follow_the_closed_forms() {
+        for layers in [
+            vec![ply(1.0, 0.3, 0.5)],
+            vec![ply(1.0, 0.499, 0.5)],
+            vec![ply(1.0, -0.5, 0.5)],
+            vec![ply(3.0, 0.25, 0.4), ply(0.2, 0.4, 0.3), ply(8.0, 0.15, 0.6)],
+        ] {
+            let top = layers[0].material;
+            let total: f64 = layers.iter().map(|p| p.thickness).sum();
+            // Bonded: uniaxial strain, W / p = sum h / (lambda + 2 mu).
+            let constrained = |m: Elastic| {
+                let nu = m.poisson;
+                m.young * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu))
+            };
+            let bonded: f64 = normaliser(top)
+                * layers
+                    .iter()
+                    .map(|p| p.thickness / constrained(p.material))
+                    .sum::<f64>();
+            // Frictionless: a common lateral strain e with no net in-plane force.
+            let e = layers
+                .iter()
+                .map(|p| p.thickness * p.material.poisson / (1.0 - p.material.poisson))
+                .sum::<f64>()
+                / layers
+                    .iter()
+                    .map(|p| p.thickness * p.material.plane_strain_modulus())
+                    .sum::<f64>();
+            let frictionless = normaliser(top)
+                * layers
+                    .iter()
+                    .map(|p| {
+                        let (y, nu) = (p.material.young, p.material.poisson);
+                        p.thickness
+                            * (nu / (1.0 - nu) * e
+                                + (1.0 - 2.0 * nu) * (1.0 + nu) / (y * (1.0 - nu)))
+                    })
+                    .sum::<f64>();
+            if layers.len() == 1 {
+                // One layer: h (1 - 2 nu) / (2 (1 - nu)^2) bonded, h / 2 sliding.
+                let (h, nu) = (layers[0].thickness, top.poisson);
+                let one = h * (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu).powi(2));
+                assert!((bonded - one).abs() < 1e-14 * one);
+                assert!((frictionless - h / 2.0).abs() < 1e-14 * h);
+            }
+            for (contact, slope) in [
+                (BaseContact::Bonded, bonded),
+                (BaseContact::Frictionless, frictionless),
+            ] {
+                let stack = Stack {
+                    layers: layers.clone(),
+                    base: Base::Rigid(contact),
+                };
+                let LongWave::Slope(limit) = stack.long_wave_limit() else {
+                    panic!("a rigid base has a slope at k = 0");
+                };
+                assert!((limit - slope).abs() < 1e-14 * slope, "{limit} vs {slope}");
+                let mut solver = LayeredSolver::new(&stack).unwrap();
+                let k = 1e-7 / total;
+                let got = solver.surface_factor(k) / k;
+                assert!(
+                    (got - slope).abs() < 1e-6 * slope,
+                    "{contact:?} {layers:?}: {got} vs {slope}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn propagator_is_the_matrix_exponential() {
+        for (mu, nu) in [(1.0, 0.3), (250.0, 0.499), (0.01, -0.7)] {
+            let m = Material { mu, nu };
+            let (a, b, c) = (
+                nu / (1.0 - nu),
+                (1.0 - 2.0 * nu) / (1.0 - nu),
+                1.0 / (1.0 - nu),
+            );
+            let system = [
+                [0.0, 1.0, 1.0 / mu, 0.0],
+                [-a, 0.0, 0.0, b / (2.0 * mu)],
+                [2.0 * mu * c, 0.0, 0.0, a],
+                [0.0, 0.0, -1.0, 0.0],
+            ];
+            for s in [-1.0, -0.3, -1e-3, 1e-6, 0.05, 0.7, 1.0] {
+                // Taylor series of exp(s M), 60 terms.
+                let mut term = [[0.0; 4]; 4];
+                let mut sum = [[0.0; 4]; 4];
+                for i in 0..4 {
+                    term[i][i] = 1.0;
+                    sum[i][i] = 1.0;
+                }
+                for n in 1..60 {
+                    let mut next = [[0.0; 4]; 4];
+                    for i in 0..4 {
+                        for j in 0..4 {
+                            next[i][j] = (0..4).map(|l| term[i][l] * system[l][j]).sum::<f64>() * s
+                                / n as f64;
+                        }
+                    }
+                    term = next;
+                    for i in 0..4 {
+                        for j in 0..4 {
+                            sum[i][j] += term[i][j];
+                        }
+                    }
+                }
+                let q = propagator(&m, s);
+                for i in 0..4 {
+                    for j in 0..4 {
+                        // Entries scale with the units of (u, w, T, S).
+                        let unit = [1.0, 1.0, mu, mu];
+                        let tol = 1e-14 * unit[i] / unit[j] + 1e-15 * sum[i][j].abs();
+                        assert!(
+                            (q[i][j] - sum[i][j]).abs() < tol.max(1e-15 * sum[i][j].abs()),
+                            "mu {mu} nu {nu} s {s} ({i}, {j}): {} vs {}",
+                            q[i][j],
+                            sum[i][j]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn eight_contrasting_layers_stay_finite_and_continuous() {
+        let thickness = [1e-6, 1e-3, 1e3, 1e-1, 1e-5, 10.0, 1e-2, 1e2];
+        let layers: Vec<Ply> = thickness
+            .iter()
+            .enumerate()
+            .map(|(i, &h)| {
+                let (young, nu) = if i % 2 == 0 { (1e3, 0.2) } else { (1.0, 0.45) };
+                ply(young, nu, h)
+            })
+            .collect();
+        let mut worst: f64 = 0.0;
+        for base in BASES {
+            let stack = Stack {
+                layers: layers.clone(),
+                base,
+            };
+            let depths = stack.interface_depths();
+            let mut solver = LayeredSolver::new(&stack).unwrap();
+            for k in log_space(1e-6, 1e6, 25) {
+                let a = solver.surface_factor(k);
+                assert!(
+                    a.is_finite() && a > 0.0 && a < 1e5,
+                    "{base:?} k = {k}: A = {a}"
+                );
+                let surface = solver.plane_response(k, 0, 0.0);
+                assert_eq!(surface.stress[2], -1.0);
+                assert_eq!(surface.stress[3], 0.0);
+                for (i, &z) in depths.iter().enumerate() {
+                    let upper = solver.layer_state(i, z);
+                    let below = i + 1 < layers.len() || matches!(base, Base::HalfSpace(_));
+                    if below {
+                        let lower = solver.layer_state(i + 1, z);
+                        for (range, what) in [(0..2, "displacement"), (2..4, "traction")] {
+                            let scale = range
+                                .clone()
+                                .map(|q| upper[q].abs().max(lower[q].abs()))
+                                .fold(0.0, f64::max);
+                            for q in range {
+                                let e = (upper[q] - lower[q]).abs() / scale.max(1e-300);
+                                worst = worst.max(e);
+                                assert!(
+                                    e < 1e-10,
+                                    "{base:?} k = {k} interface {i} {what} {q}: {} vs {}",
+                                    upper[q],
+                                    lower[q]
+                                );
+                            }
+                        }
+                        // The in-plane strain e_xixi = ((1 - nu^2) s_xx - nu (1 + nu) s_zz) / E
+                        // is continuous while sigma_xixi jumps; Hooke's law recovers it to
+                        // rounding of the stresses over E (`size`).
+                        let mut strain = |layer: usize, m: Elastic| {
+                            let r = solver.plane_response(k, layer, z).stress;
+                            let nu = m.poisson;
+                            let e = ((1.0 - nu * nu) * r[0] - nu * (1.0 + nu) * r[2]) / m.young;
+                            (e, (r[0].abs() + r[2].abs()) / m.young)
+                        };
+                        let lower_material = match (layers.get(i + 1), base) {
+                            (Some(p), _) => p.material,
+                            (None, Base::HalfSpace(m)) => m,
+                            _ => unreachable!(),
+                        };
+                        let ((ea, sa), (eb, sb)) =
+                            (strain(i, layers[i].material), strain(i + 1, lower_material));
+                        let scale = ea.abs().max(eb.abs()).max(sa).max(sb).max(1e-300);
+                        let e = (ea - eb).abs() / scale;
+                        worst = worst.max(e);
+                        assert!(
+                            e < 1e-10,
+                            "{base:?} k = {k} interface {i} strain: {ea} vs {eb}"
+                        );
+                    } else {
+                        // The rigid base's conditions.
+                        let scale = upper.iter().map(|v| v.abs()).fold(0.0, f64::max);
+                        let held = match base {
+                            Base::Rigid(BaseContact::Bonded) => [0, 1],
+                            _ => [1, 2],
+                        };
+                        for q in held {
+                            assert!(
+                                upper[q].abs() <= 1e-10 * scale,
+                                "{base:?} k = {k}: {upper:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        eprintln!("eight layers: worst interface mismatch {worst:.1e}");
+    }
+
+    #[test]
+    fn validation_names_the_field() {
+        let good = ply(1.0, 0.3, 1.0);
+        let check = |layers: Vec<Ply>, base: Base, field: &str| {
+            let error = Stack { layers, base }.validate().unwrap_err();
+            let text = error.to_string();
+            assert!(text.starts_with(field), "{text}");
+            assert!(!text.contains('\n'));
+        };
+        check(vec![], Base::Rigid(BaseContact::Bonded), "stack.layers =");
+        check(
+            vec![good, ply(1.0, 0.3, 0.0)],
+            BASES[0],
+            "stack.layers[1].thickness",
+        );
+        check(
+            vec![ply(1.0, 0.3, f64::NAN)],
+            BASES[1],
+            "stack.layers[0].thickness",
+        );
+        check(
+            vec![ply(1.0, 0.3, f64::INFINITY)],
+            BASES[1],
+            "stack.layers[0].thickness",
+        );
+        check(
+            vec![ply(1.0, 0.5, 1.0)],
+            BASES[2],
+            "stack.layers[0].poisson",
+        );
+        check(
+            vec![ply(1.0, -1.0, 1.0)],
+            BASES[2],
+            "stack.layers[0].poisson",
+        );
+        check(vec![ply(0.0, 0.3, 1.0)], BASES[2], "stack.layers[0].young");
+        check(
+            vec![good],
+            Base::HalfSpace(elastic(-1.0, 0.3)),
+            "stack.base.young",
+        );
+        check(
+            vec![good],
+            Base::HalfSpace(elastic(1.0, 0.6)),
+            "stack.base.poisson",
+        );
+        assert!(Stack {
+            layers: vec![],
+            base: BASES[0]
+        }
+        .validate()
+        .is_ok());
+        assert!(LayeredSolver::new(&Stack {
+            layers: vec![],
+            base: BASES[1]
+        })
+        .is_err());
+    }
 }
