@@ -304,13 +304,16 @@ fn solve4<const N: usize>(mut m: Mat4, mut b: [[f64; N]; 4]) -> [[f64; N]; 4] {
             .unwrap_or(c);
         m.swap(c, p);
         b.swap(c, p);
-        for i in c + 1..4 {
-            let f = m[i][c] / m[c][c];
-            for j in c..4 {
-                m[i][j] -= f * m[c][j];
+        let (m_upper, m_lower) = m.split_at_mut(c + 1);
+        let (b_upper, b_lower) = b.split_at_mut(c + 1);
+        let (pivot, rhs) = (&m_upper[c], &b_upper[c]);
+        for (row, b_row) in m_lower.iter_mut().zip(b_lower.iter_mut()) {
+            let f = row[c] / pivot[c];
+            for (x, p) in row.iter_mut().zip(pivot).skip(c) {
+                *x -= f * p;
             }
-            for j in 0..N {
-                b[i][j] -= f * b[c][j];
+            for (x, p) in b_row.iter_mut().zip(rhs) {
+                *x -= f * p;
             }
         }
     }
@@ -894,13 +897,11 @@ mod tests {
                         let z = top + f * (bottom - top);
                         let r = solver.plane_response(k, layer, z);
                         let (stress, w) = boussinesq(m, k, z);
-                        for q in 0..4 {
-                            worst = worst.max((r.stress[q] - stress[q]).abs());
+                        for (q, (got, want)) in r.stress.iter().zip(stress).enumerate() {
+                            worst = worst.max((got - want).abs());
                             assert!(
-                                (r.stress[q] - stress[q]).abs() < 1e-12,
-                                "{n} layers, k = {k}, z = {z}, {q}: {} vs {}",
-                                r.stress[q],
-                                stress[q]
+                                (got - want).abs() < 1e-12,
+                                "{n} layers, k = {k}, z = {z}, {q}: {got} vs {want}"
                             );
                         }
                         let w0 = boussinesq(m, k, 0.0).1;
@@ -968,12 +969,14 @@ mod tests {
                 .unwrap();
             m.swap(c, p);
             r.swap(c, p);
-            for i in c + 1..n {
-                let f = m[i][c] / m[c][c];
-                for j in c..n {
-                    m[i][j] -= f * m[c][j];
+            let (upper, lower) = m.split_at_mut(c + 1);
+            let pivot = &upper[c];
+            for (i, row) in lower.iter_mut().enumerate() {
+                let f = row[c] / pivot[c];
+                for (x, p) in row.iter_mut().zip(pivot).skip(c) {
+                    *x -= f * p;
                 }
-                r[i] -= f * r[c];
+                r[c + 1 + i] -= f * r[c];
             }
         }
         let mut x = vec![0.0; n];
@@ -1166,14 +1169,12 @@ mod tests {
                 let z = z0 + f * h;
                 let (stress, u, w) = dense.response(body, z);
                 let r = solver.plane_response(k, body, z);
-                for q in 0..4 {
-                    let e = (r.stress[q] - stress[q]).abs();
+                for (q, (got, want)) in r.stress.iter().zip(stress).enumerate() {
+                    let e = (got - want).abs();
                     worst = worst.max(e);
                     assert!(
                         e < tol,
-                        "k = {k}, body {body}, z = {z}, {q}: {} vs {}",
-                        r.stress[q],
-                        stress[q]
+                        "k = {k}, body {body}, z = {z}, {q}: {got} vs {want}"
                     );
                 }
                 let e = (r.u_xi - u).abs().max((r.w - w).abs()) / w0;
