@@ -40,7 +40,7 @@
 //!   `k(z - z_top) e^{-k(z - z_top)}` from the top face, `e^{-k(z_bottom - z)}` and
 //!   `k(z_bottom - z) e^{-k(z_bottom - z)}` from the bottom face (Papkovich–Neuber with
 //!   the multiplier measured from the face each one decays away from). Every basis
-//!   value lies in [-4, 4] (times `1 / 2 mu` for displacements) for any `k h`, and
+//!   value is below 8 in magnitude (times `1 / 2 mu` for displacements) for any `k h`, and
 //!   the displacement matrix of the two faces is well conditioned when `k h > 1`
 //!   (its two halves decouple as `e^{-k h} -> 0`); `k h = 1e8` only underflows the
 //!   coupling to zero.
@@ -1547,5 +1547,54 @@ mod tests {
             base: BASES[1]
         })
         .is_err());
+    }
+
+    #[test]
+    fn extreme_contrasts_and_thicknesses_keep_the_closed_form() {
+        let mut worst: f64 = 0.0;
+        for ratio in [1e4, 1e-4] {
+            let (coating, substrate) = (elastic(ratio, 0.3), elastic(1.0, 0.25));
+            let stack = Stack {
+                layers: vec![Ply {
+                    material: coating,
+                    thickness: 1.0,
+                }],
+                base: Base::HalfSpace(substrate),
+            };
+            let mut solver = LayeredSolver::new(&stack).unwrap();
+            let closed = TransferFactor::new(coating, substrate);
+            for t in log_space(1e-8, 1e8, 65) {
+                let a = solver.surface_factor(t);
+                let expected = if t < 300.0 { closed.factor(t) } else { 1.0 };
+                let error = ((a - expected) / expected).abs();
+                worst = worst.max(error);
+                assert!(
+                    error < 1e-10,
+                    "E1/E2 = {ratio}, kh = {t}: {a} vs {expected}"
+                );
+            }
+        }
+        eprintln!("E ratio 1e4 and 1e-4 vs Perriot-Barthel: worst {worst:.1e}");
+    }
+
+    #[test]
+    fn displacement_transfer_is_along_the_wave_vector() {
+        let stack = Stack {
+            layers: vec![ply(3.0, 0.25, 0.4), ply(0.2, 0.4, 0.3)],
+            base: BASES[0],
+        };
+        let mut solver = LayeredSolver::new(&stack).unwrap();
+        let (kx, ky) = (0.6, -0.8);
+        for (layer, z) in [(0, 0.0), (0, 0.2), (1, 0.5), (2, 1.5)] {
+            let r = solver.plane_response(1.0, layer, z);
+            let [ux, uy, w] = solver.displacement_transfer(kx, ky, layer, z);
+            assert_eq!(w, Complex::new(r.w, 0.0));
+            assert_eq!(ux, Complex::new(0.0, r.u_xi * kx));
+            assert_eq!(uy, Complex::new(0.0, r.u_xi * ky));
+        }
+        // At the surface w is the compliance of A: 2 (1 - nu^2) / (E k) A.
+        let a = solver.surface_factor(1.0);
+        let w = solver.plane_response(1.0, 0, 0.0).w;
+        assert!((w - 2.0 * (1.0 - 0.0625) / 3.0 * a).abs() < 1e-15 * w);
     }
 }
