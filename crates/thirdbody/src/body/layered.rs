@@ -150,7 +150,8 @@ impl Stack {
         Ok(())
     }
 
-    /// The material at the surface (the first layer's, or the base's if none).
+    /// The material at the surface (the first layer's, or the base's if none);
+    /// panics on a rigid base without layers (which `validate` rejects).
     pub fn top_material(&self) -> Elastic {
         match (self.layers.first(), self.base) {
             (Some(ply), _) => ply.material,
@@ -549,7 +550,8 @@ impl LayeredSolver {
         }
     }
 
-    /// The surface factor `A(k)` for `k > 0` (module doc).
+    /// The surface factor `A(k)` for `k > 0` (module doc; panics unless k is finite
+    /// and positive).
     pub fn surface_factor(&mut self, k: f64) -> f64 {
         let z0 = self.eliminate(k);
         let d0 = apply2(&inv2(&z0), [0.0, 1.0]);
@@ -700,6 +702,7 @@ impl LayeredSolver {
     /// top and bottom depths included: at an interface the index picks the side).
     /// At a layer's faces the interface states of the solve are used, so `u`, `w`,
     /// `sigma_zz`, `tau_xiz` are the same on both sides and `sigma_zz(0) = -1`.
+    /// Panics for a layer index or depth outside the stack, or `k <= 0`.
     pub fn plane_response(&mut self, k: f64, layer: usize, z: f64) -> PlaneResponse {
         let m = self.material(layer);
         self.solve(k);
