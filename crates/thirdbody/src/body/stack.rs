@@ -144,12 +144,28 @@ impl StackBody {
         };
         let top = scaled.top_material();
         let compliance = 2.0 * (1.0 - top.poisson * top.poisson) / top.young;
+        let t0 = std::time::Instant::now();
         let split = LongWaveSplit::new(&scaled)?;
         let mut kernel = closed_form_quadrant(&split, nx, ny);
+        let t1 = t0.elapsed().as_secs_f64();
         let love = homogeneous_surface_kernel_quadrant(top, 1.0, nx, ny);
+        let t2 = t0.elapsed().as_secs_f64();
         let remainder = Remainder::new(&scaled, &split, compliance, resolution)?;
+        let t3 = t0.elapsed().as_secs_f64();
         let fft = remainder.lattice_kernel(nx, ny, resolution);
+        let t4 = t0.elapsed().as_secs_f64();
         let long = remainder.long_wave_kernel(nx, ny);
+        let t5 = t0.elapsed().as_secs_f64();
+        if std::env::var("STACK_TIMING").is_ok() {
+            eprintln!(
+                "closed {t1:.3} love {:.3} table {:.3} lattice {:.3} long {:.3} kmax {}",
+                t2 - t1,
+                t3 - t2,
+                t4 - t3,
+                t5 - t4,
+                remainder.k_max
+            );
+        }
         for (((k, l), r), g) in kernel.iter_mut().zip(&love).zip(&fft).zip(&long) {
             // closed_form_quadrant is per unit C / (2 pi).
             *k = cell * (l + compliance / (2.0 * PI) * *k + r + g);
@@ -371,6 +387,9 @@ impl Remainder {
         let points = ChebyshevPanels::points(0.0, r_max, panels, DEGREE);
         let values: Vec<f64> = points.par_iter().map(|&r| point_response(r)).collect();
         let g = ChebyshevPanels::from_values(0.0, r_max, panels, DEGREE, &values);
+        if std::env::var("STACK_TIMING").is_ok() {
+            eprintln!("  hankel table done");
+        }
         let cell_rule = GaussLegendre::new(3);
         let offsets: Vec<(f64, f64)> = cell_rule
             .nodes
@@ -458,6 +477,7 @@ impl Remainder {
             .into_par_iter()
             .map(|m| self.aliases(node(m % nc), node(m / nc)))
             .collect();
+        let ta = std::time::Instant::now();
         let coefficients = chebyshev_coefficients_2d(&values, nc);
         // T_j at the lattice wavenumbers, u = 2 k / pi - 1.
         let basis: Vec<f64> = (0..=half)
@@ -526,6 +546,9 @@ impl Remainder {
                 },
             )
             .collect();
+        if std::env::var("STACK_TIMING").is_ok() {
+            eprintln!("  rows done {:.3}", ta.elapsed().as_secs_f64());
+        }
         // Along ky for each di.
         let scale = 1.0 / (period as f64 * period as f64);
         let columns: Vec<Vec<f64>> = (0..nx)
@@ -606,6 +629,146 @@ mod tests {
             / peak
     }
 
+    fn ply(young: f64, poisson: f64, thickness: f64) -> Ply {
+        Ply {
+            material: elastic(young, poisson),
+            thickness,
+        }
+    }
+
+    /// The kernel at `(x, y)` cells by direct quadrature of the Fourier integral in
+    /// polar coordinates, cells of side 1: Love's kernel of the top material plus
+    /// `(C / 4 pi^2) int_0^inf (A(k) - 1) Psi(k) dk`, `Psi(k) = int_0^{2 pi} S cos(kx x)
+    /// cos(ky y) dtheta` by the trapezoidal rule (periodic and smooth: it converges
+    /// once the points outnumber the integrand's angular frequencies, k (x + y + 1)),
+    /// `k` by 16-point Gauss-Legendre panels (geometric near 0, width 1/2 above).
+    fn polar_quadrature(stack: &Stack, x: f64, y: f64) -> f64 {
+        let top = stack.top_material();
+        let c = 2.0 * (1.0 - top.poisson * top.poisson) / top.young;
+        let love = crate::body::homogeneous::love_rectangle_displacement(top, 0.5, 0.5, x, y);
+        let mut solver = LayeredSolver::new(stack).unwrap();
+        let t = stack.layers[0].thickness;
+        let k_end = 25.0 / t;
+        let psi = |k: f64| {
+            let n = 4 * ((k * (x + y + 1.0) / 4.0).ceil() as usize + 12);
+            let quarter = n / 4;
+            let mut sum = 0.0;
+            for i in 0..=quarter {
+                let th = 0.5 * PI * i as f64 / quarter as f64;
+                let (kx, ky) = (k * th.cos(), k * th.sin());
+                let sinc = |u: f64| {
+                    if u == 0.0 {
+                        1.0
+                    } else {
+                        (0.5 * u).sin() / (0.5 * u)
+                    }
+                };
+                let f = sinc(kx) * sinc(ky) * (kx * x).cos() * (ky * y).cos();
+                sum += if i == 0 || i == quarter { 0.5 * f } else { f };
+            }
+            sum * 2.0 * PI / quarter as f64 * 0.25 * 4.0
+        };
+        let rule = GaussLegendre::new(16);
+        let mut edges = vec![0.0, 1e-6];
+        while *edges.last().unwrap() < k_end {
+            let last = *edges.last().unwrap();
+            edges.push((last * 1.3).min(last + 0.5).min(k_end));
+        }
+        let integral: f64 = edges
+            .windows(2)
+            .map(|e| rule.integrate(e[0], e[1], |k| (solver.surface_factor(k) - 1.0) * psi(k)))
+            .sum();
+        love + c / (4.0 * PI * PI) * integral
+    }
+
+    #[test]
+    fn agrees_with_direct_polar_quadrature() {
+        let mut worst_all: f64 = 0.0;
+        for t in [0.05, 20.0] {
+            for base in [
+                Base::HalfSpace(elastic(1.0, 0.3)),
+                Base::Rigid(BaseContact::Bonded),
+                Base::Rigid(BaseContact::Frictionless),
+            ] {
+                for layers in [
+                    vec![ply(30.0, 0.25, t), ply(1.0 / 30.0, 0.45, t)],
+                    vec![ply(1.0 / 30.0, 0.45, t), ply(30.0, 0.25, t)],
+                ] {
+                    let stack = Stack { layers, base };
+                    let kernel = StackBody {
+                        stack: stack.clone(),
+                    }
+                    .surface_kernel_quadrant(1.0, 8, 8)
+                    .unwrap();
+                    let peak = kernel[0];
+                    for (i, j) in [(0, 0), (1, 0), (2, 1), (5, 3)] {
+                        let direct = polar_quadrature(&stack, i as f64, j as f64);
+                        let e = (kernel[j * 8 + i] - direct).abs() / peak;
+                        worst_all = worst_all.max(e);
+                        eprintln!(
+                            "t {t} {base:?} ({i}, {j}): {} vs {direct}: {e:.1e}",
+                            kernel[j * 8 + i]
+                        );
+                    }
+                }
+            }
+        }
+        eprintln!("worst {worst_all:.1e}");
+    }
+
+    /// Stacks at the ends of the range: 1 to 8 layers 1e-3 to 1e3 cells thick, E
+    /// ratios 1e-3 to 1e3, every base.
+    fn extreme_stacks() -> Vec<Stack> {
+        let thickness = [1e-3, 1e3, 0.1, 10.0, 1.0, 1e2, 0.01, 1e3];
+        let mut stacks = Vec::new();
+        for base in [
+            Base::HalfSpace(elastic(1.0, 0.3)),
+            Base::HalfSpace(elastic(1e-3, 0.45)),
+            Base::HalfSpace(elastic(1e3, 0.2)),
+            Base::Rigid(BaseContact::Bonded),
+            Base::Rigid(BaseContact::Frictionless),
+        ] {
+            for (count, first) in [(1, 0), (1, 1), (2, 2), (3, 0), (8, 0), (4, 4)] {
+                for stiff_first in [true, false] {
+                    let layers = (0..count)
+                        .map(|i| {
+                            let stiff = (i % 2 == 0) == stiff_first;
+                            let (e, nu) = if stiff { (1e3, 0.2) } else { (1e-3, 0.45) };
+                            ply(e, nu, thickness[(first + i) % 8])
+                        })
+                        .collect();
+                    stacks.push(Stack { layers, base });
+                }
+            }
+        }
+        stacks
+    }
+
+    #[test]
+    fn dev_self_convergence() {
+        let fine = Resolution {
+            width: 28.0,
+            padding: 4,
+            nodes: 60,
+            split: 0.15,
+            clearance: 1280,
+        };
+        let mut all: f64 = 0.0;
+        for stack in extreme_stacks() {
+            let body = StackBody {
+                stack: stack.clone(),
+            };
+            let n = 96;
+            let a = body.surface_kernel_quadrant(1.0, n, n).unwrap();
+            let b = body.kernel_with(1.0, n, n, fine).unwrap();
+            let e = worst(&a, &b);
+            all = all.max(e);
+            let t: Vec<f64> = stack.layers.iter().map(|p| p.thickness).collect();
+            eprintln!("{:?} {t:?} peak {:.3e}: {e:.1e}", stack.base, b[0]);
+        }
+        eprintln!("worst {all:.1e}");
+    }
+
     #[test]
     fn dev_against_coated() {
         let substrate = elastic(1.0, 0.3);
@@ -643,5 +806,61 @@ mod tests {
             }
         }
         let _ = BaseContact::Bonded;
+    }
+}
+
+#[cfg(test)]
+mod timing {
+    use super::*;
+    use crate::body::layered::BaseContact;
+    use crate::case::Elastic;
+
+    #[test]
+    #[ignore]
+    fn dev_timing_1024() {
+        let ply = |young: f64, poisson: f64, thickness: f64| Ply {
+            material: Elastic { young, poisson },
+            thickness,
+        };
+        let stacks = [
+            Stack {
+                layers: vec![ply(10.0, 0.25, 1.0)],
+                base: Base::HalfSpace(Elastic {
+                    young: 1.0,
+                    poisson: 0.3,
+                }),
+            },
+            Stack {
+                layers: (0..8)
+                    .map(|i| {
+                        ply(
+                            if i % 2 == 0 { 1e3 } else { 1.0 },
+                            0.3,
+                            [1e-3, 1e3, 0.1, 10.0, 1.0, 1e2, 0.01, 1e3][i],
+                        )
+                    })
+                    .collect(),
+                base: Base::HalfSpace(Elastic {
+                    young: 1e-3,
+                    poisson: 0.3,
+                }),
+            },
+            Stack {
+                layers: vec![ply(1e-3, 0.45, 1e-3), ply(1.0, 0.3, 5.0)],
+                base: Base::Rigid(BaseContact::Bonded),
+            },
+        ];
+        for stack in stacks {
+            let body = StackBody { stack };
+            let mut times = Vec::new();
+            for _ in 0..5 {
+                let start = std::time::Instant::now();
+                let k = body.surface_kernel_quadrant(1.0, 1024, 1024).unwrap();
+                times.push(start.elapsed().as_secs_f64());
+                assert!(k[0].is_finite());
+            }
+            times.sort_by(f64::total_cmp);
+            eprintln!("times {times:?} median {:.3}", times[2]);
+        }
     }
 }
