@@ -1,40 +1,61 @@
 //! The surface cell kernel of any layered stack ([`super::layered::Stack`]): the
 //! normal displacement at the centre of the cell `(di, dj)` cells away from a square
-//! cell of side `h` under unit pressure, `K(X, Y) = (1 / 4 pi^2) int int C A(k) / k
-//! * S(kx, ky) cos(kx X) cos(ky Y) dkx dky` with `C = 2 (1 - nu_top^2) / E_top`,
-//! `A(k)` the stack's surface factor ([`super::layered::LayeredSolver::surface_factor`])
-//! and `S = h^2 sinc(kx h / 2) sinc(ky h / 2)` the cell's transform.
+//! cell of side `h` under unit pressure, from the Fourier integral
+//! `K(X, Y) = (1 / 4 pi^2) int int C A(k) / k S(kx, ky) cos(kx X) cos(ky Y) dkx dky`,
+//! `C = 2 (1 - nu_top^2) / E_top`, `A(k)` the stack's surface factor
+//! ([`super::layered::LayeredSolver::surface_factor`]) and
+//! `S = h^2 sinc(kx h / 2) sinc(ky h / 2)` the cell's transform.
 //!
 //! # Method
-//! `A(k)` is split as `1 + c0 e^{-k d} + beta k d e^{-k d} + R(k)`:
-//! - `C / k` is the top material's half-space: Love's closed form
-//!   ([`super::homogeneous`]);
-//! - `C e^{-k d} / k` is the point response `C / (2 pi sqrt(r^2 + d^2))`, whose cell
+//! `A(k) = 1 + c0 e^{-k d} + beta k d e^{-k d} + R(k)`, three closed forms and a
+//! remainder:
+//! - `C / k` is the top material's half-space: Love's kernel ([`super::homogeneous`]);
+//! - `C e^{-k d} / k` has the point response `C / (2 pi sqrt(r^2 + d^2))`, whose cell
 //!   integral has the primitive `u asinh(v / sqrt(u^2 + d^2)) + v asinh(u / sqrt(v^2 +
 //!   d^2)) - d atan(u v / (d sqrt(u^2 + v^2 + d^2)))` (mixed derivative
 //!   `1 / sqrt(u^2 + v^2 + d^2)`);
-//! - `C d e^{-k d}` is `C d^2 / (2 pi (r^2 + d^2)^{3/2})`, primitive
+//! - `C d e^{-k d}` has `C d^2 / (2 pi (r^2 + d^2)^{3/2})`, primitive
 //!   `d atan(u v / (d sqrt(u^2 + v^2 + d^2)))` (the solid angle of a rectangle);
-//! - `d` is the stack's thickness; `c0 = A(0) - 1` (`A(0) = 0` on a rigid base) and
-//!   `beta = A'(0) / d + c0` make `R(0) = R'(0) = 0`, so `C R(k) / k` is bounded,
-//!   vanishes at `k = 0` and its spatial kernel has no `1 / r` and no net load: its
-//!   periodic images are small.
+//! - `d` is the stack's thickness, `c0 = A(0) - 1` (`A(0) = 0` on a rigid base) and
+//!   `beta = A'(0) / d + c0` (`A'(0)` the closed-form slope on a rigid base,
+//!   Richardson-extrapolated differences on a half-space) make `R(0) = R'(0) = 0`:
+//!   `C R(k) / k` is bounded and carries no net load.
 //!
-//! The remainder is evaluated on the cell lattice by an inverse FFT of its periodised
-//! spectrum `sum_{m, n} F(k + 2 pi (m, n) / h)`, `F = C W(k) R(k) / k S(k)`, which
-//! gives the cell-centre values exactly up to periodic images of period `P h`
-//! (`P >= 2 max(nx, ny)`). The aliases `(m, n) != 0` are a smooth function on the
-//! Brillouin zone: they are summed at Chebyshev nodes and interpolated. `R(k) / k` is
-//! tabulated once (Chebyshev panels in `k` near 0 and in `ln k` above).
-//! `W(k) = (erfc((k - k_c) / w) - erfc((k + k_c) / w)) / 2` is a smooth low-pass:
-//! `(1 - W(k)) / k` is an even entire function, so the part left out, `C (1 - W) R /
-//! k`, has a spatial kernel without net load that is concentrated within a few `1 / w`
-//! of the load point; a cell centre lies `h / 2` from the loaded cell's edges, so its
-//! cell integral there is of order `exp(-(w h / 4)^2)`. That is what lets layers far
-//! thinner than a cell (whose `R(k)` decays only at `k ~ 1 / thickness`) be handled
-//! without resolving them: their short-wave part carries no load to any cell centre.
-//! A stack of identical materials on the same half-space has `A = 1`, `c0 = beta = 0`
-//! and `R = 0`: its kernel is Love's by construction.
+//! `C R / k` (tabulated once in `|k|`: Chebyshev panels in `k` near 0, in `ln k`
+//! above) is cut into three bands by two smooth low-passes of the form
+//! `W(k) = (erfc((k - k_c) / w) - erfc((k + k_c) / w)) / 2`, `k_c = 5.6 w`, for which
+//! `(1 - W(k)) / k` is an even entire function of k: no band has a `|k|` cusp at the
+//! origin, so each band's spatial kernel decays fast instead of like a power of r.
+//! - Long waves, `W_1` (`k_c = 0.1 / h`): band-limited to `k h < 0.2`; its radial point
+//!   response `(1 / 2 pi) int W_1 C R J0(k r) dk` by Gauss–Legendre panels (geometric
+//!   in k, narrower than the Bessel period), tabulated in r, and its cell integrals by
+//!   3 x 3 Gauss–Legendre points. No periodicity: stacks far thicker than the window,
+//!   whose `R` varies on `k ~ 1 / thickness`, are exact here.
+//! - Middle waves, `W - W_1` (`w = 21 / h`): an inverse FFT of the periodised spectrum
+//!   `sum_{m, n} F(k + 2 pi (m, n) / h)`, `F = C (W - W_1) R / k S`, which gives the
+//!   cell-centre values exactly up to periodic images; the band's kernel is confined
+//!   to a few hundred cells (the edge of `W_1`), so a period of
+//!   `max(2 n, n + 640)` cells (a power of two) leaves them below rounding. The aliases
+//!   `(m, n) != 0` are smooth on the Brillouin zone: they are summed at 40 x 40
+//!   Chebyshev nodes and interpolated.
+//! - Short waves, `1 - W`, are left out: their kernel has no net load and is
+//!   concentrated within a few `1 / w` of the load point, and a cell centre lies
+//!   `h / 2` from the loaded cell's edges, so they move it by about
+//!   `exp(-(w h / 4)^2)`. That is what lets layers far thinner than a cell (whose `R`
+//!   decays only at `k ~ 1 / thickness`) be handled without resolving them.
+//!
+//! A stack of identical materials on the same half-space has `A = 1`,
+//! `c0 = beta = 0`, `R = 0`: its kernel is Love's by construction.
+//!
+//! Accuracy (tests below): one layer on a half-space matches
+//! [`super::coated::coated_surface_kernel`] to 1.5e-13 of the peak; direct polar
+//! quadrature of the Fourier integral agrees to 1.3e-13 (stiff and soft layers 0.05
+//! and 20 cells thick, every base) and to 2.4e-13 out to offset (255, 200) for four
+//! layers 0.01 to 1000 cells thick with E ratios 1e6 across; doubling the period,
+//! widening `w` and the long-wave edge and adding alias nodes moves stacks of one to
+//! eight layers 1e-3 to 1e3 cells thick with E ratios 1e3 by 1.7e-12 at most.
+//! Cost: 1024 x 1024 cells in 0.3-0.8 s on two (shared) cores
+//! (`benches/stack_kernel.rs`).
 
 use std::f64::consts::PI;
 
@@ -157,7 +178,7 @@ impl StackBody {
         if kernel.iter().any(|v| !v.is_finite()) {
             return Err(Error::invalid(
                 "stack",
-                format!("{:?}", self.stack.layers.len()),
+                format!("{} layers", self.stack.layers.len()),
                 "a stack whose kernel is finite",
             ));
         }
