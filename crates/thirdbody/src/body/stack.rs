@@ -373,28 +373,49 @@ impl Remainder {
     fn long_wave_kernel(&self, nx: usize, ny: usize) -> Vec<f64> {
         let k_end = self.split + 5.6 * self.split_width;
         let rule = GaussLegendre::new(12);
-        let point_response = |r: f64| -> f64 {
-            let f = |k: f64| self.long_share(k) * self.q(k) * k * libm::j0(k * r);
-            // Panels: k in [0, knee], then geometric (ratio 1.25) with widths below
-            // 4 / r (0.64 of the Bessel function's period).
-            let mut sum = rule.integrate(0.0, self.knee, f);
+        // Quadrature nodes and weighted integrand `(k, w W_1 q k / 2 pi)` good up to
+        // the radius `r_hi`: k in [0, knee], then geometric panels (ratio 1.25) cut
+        // below 4 / r_hi (0.64 of the Bessel function's shortest period).
+        let nodes_up_to = |r_hi: f64| -> Vec<(f64, f64)> {
+            let mut nodes = Vec::new();
+            let mut add = |lo: f64, hi: f64| {
+                let (half, mid) = (0.5 * (hi - lo), 0.5 * (hi + lo));
+                for (x, w) in rule.nodes.iter().zip(&rule.weights) {
+                    let k = mid + half * x;
+                    let f = self.long_share(k) * self.q(k) * k / (2.0 * PI);
+                    nodes.push((k, w * half * f));
+                }
+            };
+            add(0.0, self.knee);
             let mut lo = self.knee;
             while lo < k_end {
                 let hi = (lo * 1.25).min(k_end);
-                let pieces = ((hi - lo) * r / 4.0).ceil().max(1.0) as usize;
+                let pieces = ((hi - lo) * r_hi / 4.0).ceil().max(1.0) as usize;
                 let step = (hi - lo) / pieces as f64;
                 for p in 0..pieces {
                     let a = lo + p as f64 * step;
-                    sum += rule.integrate(a, a + step, f);
+                    add(a, a + step);
                 }
                 lo = hi;
             }
-            sum / (2.0 * PI)
+            nodes
         };
         let r_max = 2f64.sqrt() * (nx.max(ny) as f64 + 1.0);
         let panels = (r_max / 16.0).ceil() as usize;
+        let width = r_max / panels as f64;
         let points = ChebyshevPanels::points(0.0, r_max, panels, DEGREE);
-        let values: Vec<f64> = points.par_iter().map(|&r| point_response(r)).collect();
+        // One node set per r panel, shared by its points.
+        let values: Vec<f64> = points
+            .par_chunks(DEGREE)
+            .enumerate()
+            .flat_map_iter(|(p, chunk)| {
+                let nodes = nodes_up_to((p + 1) as f64 * width);
+                chunk
+                    .iter()
+                    .map(|&r| nodes.iter().map(|(k, f)| f * libm::j0(k * r)).sum::<f64>())
+                    .collect::<Vec<f64>>()
+            })
+            .collect();
         let g = ChebyshevPanels::from_values(0.0, r_max, panels, DEGREE, &values);
         let cell_rule = GaussLegendre::new(3);
         let offsets: Vec<(f64, f64)> = cell_rule
