@@ -853,6 +853,39 @@ mod tests {
     }
 
     #[test]
+    fn poisson_ratio_extremes_agree_with_direct_quadrature() {
+        // Nearly incompressible and auxetic layers, where the rigid-base slopes and
+        // the membrane terms are extreme.
+        let mut worst_all: f64 = 0.0;
+        for base in [
+            Base::HalfSpace(elastic(1.0, 0.499)),
+            Base::Rigid(BaseContact::Bonded),
+            Base::Rigid(BaseContact::Frictionless),
+        ] {
+            let stack = Stack {
+                layers: vec![ply(3.0, 0.499, 0.7), ply(0.5, -0.8, 2.0)],
+                base,
+            };
+            let kernel = StackBody {
+                stack: stack.clone(),
+            }
+            .surface_kernel_quadrant(1.0, 8, 8)
+            .unwrap();
+            for (i, j) in [(0, 0), (1, 0), (4, 3)] {
+                let direct = polar_quadrature(&stack, i as f64, j as f64);
+                let e = (kernel[j * 8 + i] - direct).abs() / kernel[0];
+                worst_all = worst_all.max(e);
+                assert!(
+                    e < 1e-9,
+                    "{base:?} ({i}, {j}): {} vs {direct}",
+                    kernel[j * 8 + i]
+                );
+            }
+        }
+        eprintln!("Poisson extremes vs direct quadrature: worst {worst_all:.1e} of the peak");
+    }
+
+    #[test]
     fn one_layer_on_a_half_space_is_the_coated_kernel() {
         let substrate = elastic(1.0, 0.3);
         let mut all: f64 = 0.0;
@@ -907,6 +940,15 @@ mod tests {
         let love = homogeneous_surface_kernel_quadrant(m, 0.5, 48, 32);
         let e = worst(&kernel, &love);
         assert!(e < 1e-12, "{e:.1e}");
+        // No layers at all: the base half-space.
+        let bare = StackBody {
+            stack: Stack {
+                layers: vec![],
+                base: Base::HalfSpace(m),
+            },
+        };
+        let kernel = bare.surface_kernel_quadrant(0.5, 48, 32).unwrap();
+        assert!(worst(&kernel, &love) < 1e-12);
     }
 
     /// `(C / 2 pi) int_0^inf (A(k) - 1) dk` (cells of side 1): what a base far below
