@@ -55,8 +55,8 @@
 //! layers 0.01 to 1000 cells thick with E ratios 1e6 across; doubling the period,
 //! widening `w` and the long-wave edge and adding alias nodes moves stacks of one to
 //! eight layers 1e-3 to 1e3 cells thick with E ratios 1e3 by 1.7e-12 at most.
-//! Cost: 1024 x 1024 cells in 0.3-0.8 s on two (shared) cores
-//! (`benches/stack_kernel.rs`).
+//! Cost: 1024 x 1024 cells in 0.39-0.63 s (medians) on two cores shared with other
+//! work (`benches/stack_kernel.rs`, `docs/performance.md`).
 
 use std::f64::consts::PI;
 
