@@ -226,8 +226,9 @@ impl LongWaveSplit {
         })
     }
 
-    /// `int_0^u int_0^v` of the point response of `c0 e^{-kd} / k + beta d e^{-kd}`
-    /// times `2 pi` (module doc).
+    /// `int_0^u int_0^v (c0 / sqrt(x^2 + y^2 + d^2) + beta d^2 / (x^2 + y^2 +
+    /// d^2)^{3/2}) dy dx`: the cell primitive of the point response of
+    /// `C (c0 e^{-kd} / k + beta d e^{-kd})` per unit `C / 2 pi` (module doc).
     fn primitive(&self, u: f64, v: f64) -> f64 {
         let d = self.d;
         let r = (u * u + v * v + d * d).sqrt();
@@ -301,12 +302,8 @@ impl Remainder {
         let w = resolution.width;
         let centre = 5.6 * w;
         let k_max = centre + 5.6 * w;
-        let thinnest = stack
-            .layers
-            .iter()
-            .map(|p| p.thickness)
-            .fold(split.d, f64::min);
-        let knee = (0.05 / split.d).min(0.05 / thinnest).min(0.05);
+        // Below the knee R / k is a smooth function of k (its scale is 1 / d at most).
+        let knee = (0.05 / split.d).min(0.05);
         let solver = LayeredSolver::new(stack)?;
         let value = |solver: &mut LayeredSolver, k: f64| {
             let low_pass = 0.5 * (libm::erfc((k - centre) / w) - libm::erfc((k + centre) / w));
