@@ -197,7 +197,7 @@ fn plane_stresses(
 }
 
 /// Rotates the plane-strain stresses of wave vector (kx, ky) to x, y.
-fn rotate(kx: f64, ky: f64, s: [f64; 4]) -> StressTransfer {
+pub(crate) fn rotate(kx: f64, ky: f64, s: [f64; 4]) -> StressTransfer {
     let k = kx.hypot(ky);
     let (c, sn) = if k > 0.0 {
         (kx / k, ky / k)

@@ -11,12 +11,15 @@ pub mod coated;
 mod coated_radial;
 pub mod coated_stress;
 pub mod homogeneous;
+pub mod layered;
 pub(crate) mod quadrature;
+pub mod stack;
 
 use std::sync::Arc;
 
 pub use coated::CoatedHalfSpace;
 pub use homogeneous::HomogeneousHalfSpace;
+pub use stack::StackBody;
 
 use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum};
