@@ -230,7 +230,7 @@ fn creep_lengths_from_a_hundredth_of_a_cell_to_ten_cells_give_the_row_friction()
     // creep length is shorter than it; the layer reconstructs the forcing linearly
     // in each cell and integrates the branch exactly. Kelvin–Voigt and Zener layers
     // on the 128^2 window of the row solution (contact half-length about 53 cells),
-    // V tau / h = 0.01, 0.1, 1 and 10. Measured mu errors: 0.78 %, 0.73 %, 0.49 %,
+    // V tau / h = 0.01, 0.1, 1 and 10. Measured mu errors: 0.68 %, 0.72 %, 0.49 %,
     // 0.080 % (Kelvin–Voigt), first order in h below a creep length of a cell, but
     // small since both ends of each row are located inside their cells
     // (docs/validation.md).
