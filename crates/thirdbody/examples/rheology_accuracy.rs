@@ -55,6 +55,47 @@ fn main() {
                 retardation_time: 1.0,
             },
         ),
+        (
+            "burgers",
+            Rheology::Burgers {
+                glassy_compliance: 0.01,
+                relaxation_time: 100.0,
+                compliance: 0.01,
+                retardation_time: 1.0,
+            },
+        ),
+        (
+            "prony_10",
+            Rheology::Prony {
+                glassy_compliance: 0.005,
+                branches: (0..10)
+                    .map(|k| RetardationBranch {
+                        compliance: 0.0015,
+                        time: 0.2 * 10f64.powf(k as f64 * 4.0 / 9.0),
+                    })
+                    .collect(),
+                viscosity: None,
+            },
+        ),
+        (
+            "fractional_zener",
+            Rheology::FractionalZener {
+                glassy_compliance: 0.01,
+                compliance: 0.01,
+                retardation_time: 1.0,
+                order: 0.5,
+                branch_count: None,
+            },
+        ),
+        (
+            "box_spectrum",
+            Rheology::BoxSpectrum {
+                glassy_compliance: 0.005,
+                compliance: 0.015,
+                shortest_time: 0.2,
+                longest_time: 2e3,
+            },
+        ),
     ];
     let params = SolverParams {
         tolerance: 1e-11,

@@ -1489,6 +1489,32 @@ mod tests {
         centres
     }
 
+    /// `J dp` against central differences of the row sweep at `p` along `dp`.
+    fn assert_jacobian_is_the_derivative(
+        op: &ViscoelasticRows,
+        jac: &ViscoelasticJacobian,
+        p: &[f64],
+        dp: &[f64],
+    ) {
+        let n = p.len();
+        let mut jd = vec![0.0; n];
+        jac.apply(dp, &mut jd);
+        let e = 1e-8;
+        let plus: Vec<f64> = p.iter().zip(dp).map(|(a, b)| a + e * b).collect();
+        let minus: Vec<f64> = p.iter().zip(dp).map(|(a, b)| a - e * b).collect();
+        let (mut wp, mut wm) = (vec![0.0; n], vec![0.0; n]);
+        op.row_sweep(&plus, &mut wp);
+        op.row_sweep(&minus, &mut wm);
+        for k in 0..n {
+            let fd = (wp[k] - wm[k]) / (2.0 * e);
+            assert!(
+                (jd[k] - fd).abs() < 1e-6 * fd.abs().max(1e-3),
+                "{k}: {} {fd}",
+                jd[k]
+            );
+        }
+    }
+
     #[test]
     fn jacobian_matches_finite_differences_and_inverts() {
         let layers = [
@@ -1516,22 +1542,7 @@ mod tests {
             let p: Vec<f64> = (0..12).map(|k| 0.0007 * (1 + (k * 5) % 7) as f64).collect();
             let jac = op.jacobian(&p);
             let dp: Vec<f64> = (0..12).map(|k| ((k * 3) % 4) as f64 - 1.5).collect();
-            let mut jd = vec![0.0; 12];
-            jac.apply(&dp, &mut jd);
-            let e = 1e-8;
-            let plus: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + e * b).collect();
-            let minus: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a - e * b).collect();
-            let (mut wp, mut wm) = (vec![0.0; 12], vec![0.0; 12]);
-            op.row_sweep(&plus, &mut wp);
-            op.row_sweep(&minus, &mut wm);
-            for k in 0..12 {
-                let fd = (wp[k] - wm[k]) / (2.0 * e);
-                assert!(
-                    (jd[k] - fd).abs() < 1e-6 * fd.abs().max(1e-3),
-                    "{k}: {} {fd}",
-                    jd[k]
-                );
-            }
+            assert_jacobian_is_the_derivative(&op, &jac, &p, &dp);
             // J less its one entry above the diagonal (the downstream neighbour's
             // share of a branch's centred slope), which the preconditioner leaves out.
             let lower = |y: &[f64], out: &mut [f64]| {
@@ -1625,22 +1636,7 @@ mod tests {
             }
             let jac = op.jacobian(&p);
             let dp: Vec<f64> = (0..12).map(|k| ((k * 3) % 4) as f64 - 1.5).collect();
-            let mut jd = vec![0.0; 12];
-            jac.apply(&dp, &mut jd);
-            let e = 1e-8;
-            let plus: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + e * b).collect();
-            let minus: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a - e * b).collect();
-            let (mut wp, mut wm) = (vec![0.0; 12], vec![0.0; 12]);
-            op.row_sweep(&plus, &mut wp);
-            op.row_sweep(&minus, &mut wm);
-            for k in 0..12 {
-                let fd = (wp[k] - wm[k]) / (2.0 * e);
-                assert!(
-                    (jd[k] - fd).abs() < 1e-6 * fd.abs().max(1e-3),
-                    "{k}: {} {fd}",
-                    jd[k]
-                );
-            }
+            assert_jacobian_is_the_derivative(&op, &jac, &p, &dp);
             // The entries above the diagonal, by finite differences of unit
             // perturbations, are what the preconditioner leaves out.
             let above = |k: usize| {
