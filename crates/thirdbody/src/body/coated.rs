@@ -67,6 +67,7 @@ use super::quadrature::GaussLegendre;
 use super::ElasticBody;
 use crate::case::Elastic;
 use crate::error::{require_positive, Error, Result};
+use crate::provenance::{self, Reference};
 use crate::stress::{CoatedStressKernels, Side, StressKernels};
 
 /// A coating of thickness `thickness` perfectly bonded to a substrate half-space.
@@ -102,6 +103,22 @@ impl ElasticBody for CoatedHalfSpace {
         self.coating
             .plane_strain_modulus()
             .min(self.substrate.plane_strain_modulus())
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        let response = "the coated body's Fourier response (surface and stress kernels)";
+        vec![
+            Reference::new(provenance::CHEN, response),
+            Reference::new(provenance::OSULLIVAN_KING, response),
+            Reference::new(
+                provenance::PERRIOT_BARTHEL,
+                "the coated body's response in a cancellation-free form",
+            ),
+            Reference::new(
+                provenance::LOVE,
+                "the substrate's part of the coated kernels (uniform pressure on a rectangle)",
+            ),
+        ]
     }
 }
 

@@ -22,6 +22,7 @@ use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum};
 use crate::error::Result;
 use crate::grid::Grid;
+use crate::provenance::Reference;
 use crate::stress::{Side, StressKernels};
 
 /// An elastic body as the solvers and the stress sections see it.
@@ -40,6 +41,8 @@ pub trait ElasticBody: std::fmt::Debug + Send + Sync {
     /// The smallest plane-strain modulus `E / (1 - nu^2)` of its materials (the
     /// automatic window's Hertz estimate uses it).
     fn softest_modulus(&self) -> f64;
+    /// The works its kernels come from, with what each gives.
+    fn references(&self) -> Vec<Reference>;
 }
 
 impl Body {
