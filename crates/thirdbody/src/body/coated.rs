@@ -269,6 +269,10 @@ fn sinh_minus_identity(t: f64) -> f64 {
 
 /// The coating factor `A(k h1)` of the surface response (see the module doc);
 /// accepts -1 < nu <= 0.5 (the caller validates materials).
+///
+/// Not part of the API: public only for the quadratures `tests/coated_kernel.rs`
+/// checks the kernel against.
+#[doc(hidden)]
 pub fn coating_factor(coating: Elastic, substrate: Elastic, k_thickness: f64) -> f64 {
     TransferFactor::new(coating, substrate).factor(k_thickness)
 }
@@ -335,6 +339,10 @@ const TAU_NODES: usize = 8;
 /// Displacement at cell offset `(di, dj)` (0 <= di < nx, 0 <= dj < ny, row-major
 /// `dj * nx + di`) per unit pressure on one square cell of side `cell`, on the
 /// coated body. The kernel is even in di and dj.
+///
+/// Not part of the API (bodies give their kernels through [`ElasticBody`]): public
+/// only for `benches/coated_kernel.rs` and the checks in `tests/coated_kernel.rs`.
+#[doc(hidden)]
 pub fn coated_surface_kernel(
     coating: Elastic,
     thickness: f64,
