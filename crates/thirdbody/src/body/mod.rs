@@ -63,16 +63,6 @@ impl Body {
     }
 }
 
-/// The surface-displacement kernel spectrum of `body` on `grid`'s cells, computed
-/// afresh (use [`crate::KernelCache`] to keep it across solves).
-pub fn surface_kernel_spectrum(
-    body: &Body,
-    grid: &Grid,
-    plan: &Arc<ConvolutionPlan>,
-) -> Result<KernelSpectrum> {
-    Ok(plan.respectrum(&surface_kernel(body, grid, plan)?))
-}
-
 /// The surface-displacement kernel of `body` on `grid`'s cells, given by its
 /// quadrant only: the spectrum on a padding is built when a product needs it
 /// ([`ConvolutionPlan::even_kernel`]).
@@ -84,5 +74,5 @@ pub fn surface_kernel(
     let quadrant = body
         .model()
         .surface_kernel_quadrant(grid.cell, grid.nx, grid.ny)?;
-    Ok(plan.even_kernel(quadrant))
+    plan.even_kernel(quadrant)
 }
