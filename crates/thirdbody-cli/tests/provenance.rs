@@ -3,6 +3,8 @@
 //! from and a hash of the canonical case; `thirdbody cite` prints the references,
 //! those of one case with its case file; `--version` names the commit.
 
+mod common;
+
 use std::collections::BTreeSet;
 use std::process::Command;
 
@@ -26,7 +28,7 @@ fn head_commit() -> Option<String> {
         .then(|| String::from_utf8(out.stdout).unwrap().trim().to_owned())
 }
 
-const CASE: &str = "[slider]\nshape = \"sphere\"\nradius = 1.0\n\n[substrate]\nyoung = 1.0\npoisson = 0.3\n\n[loading]\nnormal_load = 5e-6\n\n[grid]\ncells = [16, 16]\n";
+use common::SPHERE as CASE;
 
 fn summary_of(case: &str) -> serde_json::Value {
     let dir = tempfile::tempdir().unwrap();

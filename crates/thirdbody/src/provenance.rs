@@ -294,15 +294,8 @@ pub(crate) fn merged(references: Vec<Reference>) -> Vec<Reference> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::case_file::parse_case_file;
 
-    fn parse(text: &str) -> Case {
-        let mut no_maps =
-            |_: &str, _: f64| -> crate::Result<crate::HeightMap> { unreachable!("no height map") };
-        parse_case_file(text, &mut no_maps).unwrap().case
-    }
-
-    const CASE: &str = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\npoisson = 0.3\n[loading]\nnormal_load = 5e-6\n[grid]\ncells = [32, 32]\n";
+    use crate::test_cases::{parse, HERTZ as CASE};
 
     #[test]
     fn the_case_hash_ignores_layout_and_sees_every_value() {
