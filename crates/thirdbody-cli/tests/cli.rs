@@ -7,26 +7,9 @@ mod common;
 
 use std::path::Path;
 
-use common::{assert_no_output, read_summary, solve};
+use common::{assert_no_output, read_summary, solve, SPHERE};
 
 use ndarray::Array2;
-
-/// A layer-free sphere on a small grid (Hertz: R = 1, E = 1, nu = 0.3).
-const SPHERE: &str = r#"
-[slider]
-shape = "sphere"
-radius = 1.0
-
-[substrate]
-young = 1.0
-poisson = 0.3
-
-[loading]
-normal_load = 5e-6
-
-[grid]
-cells = [32, 32]
-"#;
 
 /// The paper's Fig. 3 case on a small grid.
 const LAYERED: &str = r#"

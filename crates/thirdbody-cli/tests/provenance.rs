@@ -1,6 +1,9 @@
 //! Provenance in every result: `summary.json` and every row
 //! of `results.csv` carry the thirdbody version, the git commit the program was built
-//! from and a hash of the canonical case; `thirdbody cite` prints the references.
+//! from and a hash of the canonical case; `thirdbody cite` prints the references,
+//! those of one case with its case file; `--version` names the commit.
+
+mod common;
 
 use std::collections::BTreeSet;
 use std::process::Command;
@@ -25,7 +28,7 @@ fn head_commit() -> Option<String> {
         .then(|| String::from_utf8(out.stdout).unwrap().trim().to_owned())
 }
 
-const CASE: &str = "[slider]\nshape = \"sphere\"\nradius = 1.0\n\n[substrate]\nyoung = 1.0\npoisson = 0.3\n\n[loading]\nnormal_load = 5e-6\n\n[grid]\ncells = [16, 16]\n";
+use common::SPHERE as CASE;
 
 fn summary_of(case: &str) -> serde_json::Value {
     let dir = tempfile::tempdir().unwrap();
@@ -119,7 +122,10 @@ fn cite_prints_the_references_as_bibtex() {
     let run = thirdbody(&["cite"]);
     assert!(run.status.success());
     let text = String::from_utf8(run.stdout).unwrap();
-    assert_eq!(text.matches("@article{").count(), 7);
+    assert_eq!(
+        text.matches("@article{").count() + text.matches("@book{").count(),
+        13
+    );
     assert!(text.contains("doi     = {10.3390/lubricants11080333}"));
     for author in [
         "Torskaya",
@@ -132,4 +138,65 @@ fn cite_prints_the_references_as_bibtex() {
     ] {
         assert!(text.contains(author), "{author} missing");
     }
+}
+
+/// `thirdbody cite CASE` with `extra` args, the case written into a fresh folder.
+fn cite_case(case: &str, extra: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("case.toml");
+    std::fs::write(&path, case).unwrap();
+    let mut args = vec!["cite", path.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let run = thirdbody(&args);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    String::from_utf8(run.stdout).unwrap()
+}
+
+#[test]
+fn cite_with_a_case_lists_the_works_it_uses() {
+    let maxwell = CASE.replace(
+        "normal_load = 5e-6\n",
+        "normal_load = 5e-6\nvelocity = 0.1\n\n[layer]\ncompliance = 0.02\nrelaxation_time = 1.0\n",
+    );
+    let text = cite_case(&maxwell, &[]);
+    assert!(text.contains("Lubricants 11 (2023) 333"), "{text}");
+    assert!(text.contains("Maxwell layer"), "{text}");
+    assert!(text.contains("Hintermüller"), "{text}");
+    assert!(!text.contains("Polonsky"), "{text}");
+    assert!(!text.contains("Perriot"), "{text}");
+    // Without creep the same body is solved by conjugate gradients.
+    let text = cite_case(CASE, &[]);
+    assert!(
+        text.contains("Polonsky") && !text.contains("Hintermüller"),
+        "{text}"
+    );
+    let coated = format!("{CASE}\n[coating]\nyoung = 2.0\npoisson = 0.3\nthickness = 0.05\n");
+    let bibtex = cite_case(&coated, &["--bibtex"]);
+    for key in [
+        "perriot2004elastic",
+        "osullivan1988sliding",
+        "polonsky1999numerical",
+    ] {
+        assert!(
+            bibtex.contains(&format!("{{{key},")),
+            "{key} missing: {bibtex}"
+        );
+    }
+    assert!(!bibtex.contains("hintermuller"), "{bibtex}");
+}
+
+#[test]
+fn version_names_the_commit() {
+    let run = thirdbody(&["--version"]);
+    assert!(run.status.success());
+    let text = String::from_utf8(run.stdout).unwrap();
+    let commit = head_commit().unwrap_or_else(|| "unknown".to_owned());
+    assert_eq!(
+        text.trim(),
+        format!("thirdbody {} (commit {commit})", env!("CARGO_PKG_VERSION"))
+    );
 }

@@ -465,7 +465,7 @@ impl Solution {
             py,
             name,
             &section,
-            [g.nx, g.ny],
+            [g.nx(), g.ny()],
             thirdbody_engine::memory::available_bytes(),
         )?;
         let field = stresses::compute(py, &self.solution, &section)?.map_err(to_py_error)?;
@@ -576,7 +576,7 @@ fn progress_dict<'py>(
         Progress::Window { attempt, grid } => {
             d.set_item("event", "window")?;
             d.set_item("window", attempt)?;
-            d.set_item("cells", (grid.nx, grid.ny))?;
+            d.set_item("cells", (grid.nx(), grid.ny()))?;
             let [wx, wy] = grid.half_widths();
             d.set_item("half_width", (wx, wy))?;
         }
@@ -677,7 +677,7 @@ fn solve_in(
     let summary_json = serde_json::to_string(&report)
         .map_err(|e| PyRuntimeError::new_err(format!("summary: {e}")))?;
     let g = solution.grid;
-    let shape = (g.ny, g.nx);
+    let shape = (g.ny(), g.nx());
     // The fields move into numpy without a copy; the pressure stays for stresses.
     let arrays = Fields {
         pressure: read_only(py, solution.pressure.clone(), shape)?,
@@ -693,8 +693,8 @@ fn solve_in(
             .take()
             .map(|v| read_only(py, v, shape))
             .transpose()?,
-        x: read_only(py, (0..g.nx).map(|i| g.x(i)).collect(), g.nx)?,
-        y: read_only(py, (0..g.ny).map(|j| g.y(j)).collect(), g.ny)?,
+        x: read_only(py, (0..g.nx()).map(|i| g.x(i)).collect(), g.nx())?,
+        y: read_only(py, (0..g.ny()).map(|j| g.y(j)).collect(), g.ny())?,
     };
     warn_all(py, &report.warnings)?;
     Ok(Solution {

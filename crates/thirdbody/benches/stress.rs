@@ -11,8 +11,8 @@ use thirdbody::{Body, Elastic, Grid};
 /// Hertz pressure `sqrt(1 - r^2/a^2)` at cell centres, contact radius `a`.
 fn hertz(grid: &Grid, a: f64) -> Vec<f64> {
     let mut p = vec![0.0; grid.len()];
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let r2 = grid.x(i).powi(2) + grid.y(j).powi(2);
             p[grid.index(i, j)] = (1.0 - r2 / (a * a)).max(0.0).sqrt();
         }

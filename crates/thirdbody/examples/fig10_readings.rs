@@ -98,14 +98,14 @@ fn case(delta: f64, integration: Integration, cells: usize) -> Case {
 /// The pressure mirrored in x (p'(x) = p(-x)) on the mirrored grid.
 fn mirrored(grid: &Grid, pressure: &[f64]) -> Result<(Grid, Vec<f64>)> {
     let centre = [
-        -(grid.x0 + 0.5 * grid.nx as f64 * grid.cell),
-        grid.y0 + 0.5 * grid.ny as f64 * grid.cell,
+        -(grid.x0() + 0.5 * grid.nx() as f64 * grid.cell()),
+        grid.y0() + 0.5 * grid.ny() as f64 * grid.cell(),
     ];
-    let g = Grid::centred(grid.nx, grid.ny, grid.cell, centre)?;
+    let g = Grid::centred(grid.nx(), grid.ny(), grid.cell(), centre)?;
     let mut p = vec![0.0; pressure.len()];
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            p[j * grid.nx + (grid.nx - 1 - i)] = pressure[j * grid.nx + i];
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
+            p[j * grid.nx() + (grid.nx() - 1 - i)] = pressure[j * grid.nx() + i];
         }
     }
     Ok((g, p))
@@ -292,8 +292,8 @@ fn main() -> Result<()> {
                 let g = solution.grid;
                 let label = format!(
                     "{cells} (h = {:.5}, half width {:.4})",
-                    g.cell,
-                    0.5 * g.nx as f64 * g.cell
+                    g.cell(),
+                    0.5 * g.nx() as f64 * g.cell()
                 );
                 let row = Row {
                     delta,
@@ -306,16 +306,16 @@ fn main() -> Result<()> {
                 if cells == 128 && name == "exact" {
                     // The same cell size on a window 1.5 times wider (192 cells).
                     let mut wide = case(delta, integration, 192);
-                    wide.grid.half_width = Some([0.75 * g.nx as f64 * g.cell; 2]);
-                    wide.grid.centre = Some([g.x0 + 0.5 * g.nx as f64 * g.cell, 0.0]);
+                    wide.grid.half_width = Some([0.75 * g.nx() as f64 * g.cell(); 2]);
+                    wide.grid.centre = Some([g.x0() + 0.5 * g.nx() as f64 * g.cell(), 0.0]);
                     let solution = solve(&wide, &params)?;
                     let row = Row {
                         delta,
                         integration: name,
                         label: format!(
                             "192 wide (h = {:.5}, half width {:.4})",
-                            g.cell,
-                            0.75 * g.nx as f64 * g.cell
+                            g.cell(),
+                            0.75 * g.nx() as f64 * g.cell()
                         ),
                         solution,
                         body: c.body,

@@ -5,7 +5,9 @@
 
 use crate::error::{require_poisson, require_positive, Error, Result};
 use crate::layer::Layer;
+use crate::provenance::{self, Reference};
 use crate::shape::Slider;
+use crate::solution::Method;
 
 /// An isotropic linear elastic material.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -206,6 +208,54 @@ impl Case {
         let cells = self.grid.cells[0] as f64 * self.grid.cells[1] as f64;
         let per_cell = if self.layer.is_some() { 370.0 } else { 220.0 };
         cells * per_cell + 16.0 * 1024.0 * 1024.0
+    }
+
+    /// The method a solve of this case uses when the `[solver]` asks for
+    /// `requested` (`None`: the automatic choice): Polonsky–Keer conjugate gradients
+    /// when the problem is symmetric (no layer, or a layer that is a linear spring
+    /// bed at the case's velocity: [`Layer::is_spring_bed`]), semi-smooth Newton
+    /// otherwise ([`crate::solve_problem`]).
+    pub fn solver_method(&self, requested: Option<Method>) -> Method {
+        requested.unwrap_or(match &self.layer {
+            Some(layer) if !layer.is_spring_bed(self.velocity()) => Method::SemismoothNewton,
+            _ => Method::PolonskyKeer,
+        })
+    }
+
+    /// The published works a solve of this case relies on, each once, with what it
+    /// is used for: the paper's model, the layer's rheology and its discretisation,
+    /// the body's kernels, DC-FFT, and the solver `requested` would pick
+    /// ([`Case::solver_method`]). `thirdbody cite CASE` prints them.
+    pub fn references(&self, requested: Option<Method>) -> Vec<Reference> {
+        let mut all = vec![Reference::new(
+            provenance::PAPER,
+            if self.layer.is_some() {
+                "the third-body layer model: pressure-dependent compliance, integration \
+                 along the sliding direction (eq. 2-8)"
+            } else {
+                "the contact model solved (eq. 3-6)"
+            },
+        )];
+        if let Some(layer) = &self.layer {
+            all.extend(layer.rheology.references());
+        }
+        all.extend(self.body.model().references());
+        all.push(Reference::new(
+            provenance::DC_FFT,
+            "the body's influence as a discrete convolution by FFT",
+        ));
+        match self.solver_method(requested) {
+            Method::PolonskyKeer => all.push(Reference::new(
+                provenance::POLONSKY_KEER,
+                "the contact solver (conjugate gradients)",
+            )),
+            Method::SemismoothNewton => all.push(Reference::new(
+                provenance::SEMISMOOTH_NEWTON,
+                "the contact solver (semi-smooth Newton on the complementarity conditions)",
+            )),
+            Method::DenseReference => {}
+        }
+        provenance::merged(all)
     }
 
     /// Sliding velocity, infinite when none is given.

@@ -33,6 +33,14 @@ pub struct CaseFile {
     pub stress: Option<StressRequest>,
 }
 
+impl CaseFile {
+    /// The works a solve of this case file relies on ([`Case::references`] with its
+    /// `[solver] method`).
+    pub fn references(&self) -> Vec<crate::provenance::Reference> {
+        self.case.references(self.solver.method)
+    }
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCase {

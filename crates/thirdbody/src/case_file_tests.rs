@@ -3,6 +3,7 @@
 //! allowed range in one line.
 
 use super::*;
+use crate::test_cases::HERTZ;
 
 /// The paper's Fig. 3 case, as the case file states it.
 const FIG3: &str = r#"
@@ -28,20 +29,6 @@ velocity = 1e-3
 
 [grid]
 cells = [128, 128]
-"#;
-
-/// A layer-free sphere.
-const HERTZ: &str = r#"
-[slider]
-shape = "sphere"
-radius = 1.0
-[substrate]
-young = 1.0
-poisson = 0.3
-[loading]
-normal_load = 5e-6
-[grid]
-cells = [32, 32]
 "#;
 
 fn no_map(_: &str, _: f64) -> Result<HeightMap> {

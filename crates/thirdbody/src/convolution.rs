@@ -18,6 +18,8 @@ use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
+use crate::error::{Error, Result};
+
 /// Whether one operation may use several threads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Parallelism {
@@ -85,6 +87,11 @@ enum SpectrumValues {
 }
 
 impl KernelSpectrum {
+    /// Cells `[nx, ny]` of the grid the kernel was built for.
+    pub fn grid(&self) -> [usize; 2] {
+        [self.nx, self.ny]
+    }
+
     /// Bytes held by the spectrum.
     pub fn bytes(&self) -> usize {
         match &self.values {
@@ -392,14 +399,21 @@ impl ConvolutionPlan {
     /// takes it): nothing is transformed until a product builds its
     /// spectrum on a padding (the same bits as building it at once). A contact
     /// operator whose products are all on a trimmed padding never needs the full
-    /// one.
-    pub fn even_kernel(self: &Arc<Self>, quadrant: Vec<f64>) -> KernelSpectrum {
-        assert_eq!(
-            quadrant.len(),
-            self.nx * self.ny,
-            "quadrant size does not match the plan"
-        );
-        KernelSpectrum {
+    /// one. A quadrant of another size than the plan's `nx * ny` cells is an error.
+    pub fn even_kernel(self: &Arc<Self>, quadrant: Vec<f64>) -> Result<KernelSpectrum> {
+        if quadrant.len() != self.nx * self.ny {
+            return Err(Error::invalid(
+                "kernel quadrant",
+                format!("{} values", quadrant.len()),
+                &format!(
+                    "{} values, one per cell of the plan's {} x {} grid",
+                    self.nx * self.ny,
+                    self.nx,
+                    self.ny
+                ),
+            ));
+        }
+        Ok(KernelSpectrum {
             nx: self.nx,
             ny: self.ny,
             px: self.px,
@@ -409,7 +423,7 @@ impl ConvolutionPlan {
                 values: None,
                 quadrant: Arc::new(quadrant),
             },
-        }
+        })
     }
 
     /// The spectrum on this plan's padding of the even kernel that `kernel` was
@@ -831,6 +845,10 @@ enum ColumnWork<'a> {
 
 /// Direct O(n^2) summation of the same convolution: the obviously-correct reference
 /// the DC-FFT is tested against.
+///
+/// Not part of the API: public only for the integration tests that compare the
+/// DC-FFT with it (`tests/threads.rs`, `tests/coated_kernel.rs`).
+#[doc(hidden)]
 pub fn direct_convolution(
     nx: usize,
     ny: usize,
@@ -1077,6 +1095,18 @@ mod tests {
     }
 
     #[test]
+    fn a_quadrant_of_the_wrong_size_is_an_error() {
+        let plan = ConvolutionPlan::new(13, 9, Parallelism::Sequential);
+        let e = plan.even_kernel(vec![1.0; 13 * 9 - 1]).unwrap_err();
+        let message = e.to_string();
+        assert!(message.contains("kernel quadrant"), "{message}");
+        assert!(
+            message.contains("116 values") && message.contains("117 values"),
+            "{message}"
+        );
+    }
+
+    #[test]
     fn a_kernel_given_by_its_quadrant_gets_the_same_spectrum_when_built() {
         let (nx, ny) = (13, 9);
         let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
@@ -1084,7 +1114,7 @@ mod tests {
             .map(|k| even_slow((k % nx) as i64, (k / nx) as i64))
             .collect();
         let eager = plan.even_kernel_spectrum(&quadrant);
-        let lazy = plan.even_kernel(quadrant);
+        let lazy = plan.even_kernel(quadrant.clone()).unwrap();
         assert!(!lazy.has_values() && eager.has_values());
         assert_eq!(lazy.self_coefficient(), eager.self_coefficient());
         assert!(lazy.bytes() < eager.bytes());

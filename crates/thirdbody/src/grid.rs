@@ -9,22 +9,66 @@ use crate::error::{Error, Result};
 /// Smallest number of cells allowed along either axis.
 pub const MIN_CELLS: usize = 8;
 
-/// A window of square cells.
+/// A window of square cells. Its fields are read through methods and set only by
+/// the checked constructors ([`Grid::new`], [`Grid::centred`]), so that every grid
+/// has at least [`MIN_CELLS`] cells along each axis and a finite positive cell.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Grid {
     /// Cells along x (columns).
-    pub nx: usize,
+    pub(crate) nx: usize,
     /// Cells along y (rows).
-    pub ny: usize,
+    pub(crate) ny: usize,
     /// Side of a square cell, `h = 2a` in the paper's notation.
-    pub cell: f64,
+    pub(crate) cell: f64,
     /// x of the window's left edge.
-    pub x0: f64,
+    pub(crate) x0: f64,
     /// y of the window's lower edge.
-    pub y0: f64,
+    pub(crate) y0: f64,
 }
 
 impl Grid {
+    /// A grid of `nx x ny` cells of side `cell` whose window's lower left corner is
+    /// `corner` (`[x0, y0]`). Too few cells, a cell that is not finite and positive
+    /// or a corner that is not finite is an error naming it.
+    pub fn new(nx: usize, ny: usize, cell: f64, corner: [f64; 2]) -> Result<Self> {
+        let centred = Grid::centred(nx, ny, cell, [0.0, 0.0])?;
+        for (name, v) in [("grid x0", corner[0]), ("grid y0", corner[1])] {
+            if !v.is_finite() {
+                return Err(Error::invalid(name, v, "a finite number"));
+            }
+        }
+        Ok(Grid {
+            x0: corner[0],
+            y0: corner[1],
+            ..centred
+        })
+    }
+
+    /// Cells along x (columns).
+    pub fn nx(&self) -> usize {
+        self.nx
+    }
+
+    /// Cells along y (rows).
+    pub fn ny(&self) -> usize {
+        self.ny
+    }
+
+    /// Side of a square cell, `h = 2a` in the paper's notation.
+    pub fn cell(&self) -> f64 {
+        self.cell
+    }
+
+    /// x of the window's left edge.
+    pub fn x0(&self) -> f64 {
+        self.x0
+    }
+
+    /// y of the window's lower edge.
+    pub fn y0(&self) -> f64 {
+        self.y0
+    }
+
     /// A grid of `nx x ny` cells of side `cell` whose window is centred on `centre`.
     pub fn centred(nx: usize, ny: usize, cell: f64, centre: [f64; 2]) -> Result<Self> {
         for (name, n) in [("grid.cells[0]", nx), ("grid.cells[1]", ny)] {
@@ -120,6 +164,27 @@ mod tests {
         let e = Grid::centred(7, 10, 0.5, [0.0, 0.0]).unwrap_err();
         assert!(e.to_string().contains("grid.cells[0]"), "{e}");
         assert!(e.to_string().contains("at least 8"), "{e}");
+    }
+
+    #[test]
+    fn an_invalid_grid_cannot_be_built() {
+        let message = |r: Result<Grid>| r.unwrap_err().to_string();
+        let e = message(Grid::new(8, 3, 0.5, [0.0, 0.0]));
+        assert!(
+            e.contains("grid.cells[1]") && e.contains("at least 8"),
+            "{e}"
+        );
+        let e = message(Grid::new(8, 8, 0.0, [0.0, 0.0]));
+        assert!(e.contains("grid cell size") && e.contains("> 0"), "{e}");
+        let e = message(Grid::centred(8, 8, f64::NAN, [0.0, 0.0]));
+        assert!(e.contains("grid cell size"), "{e}");
+        let e = message(Grid::new(8, 8, 1.0, [0.0, f64::INFINITY]));
+        assert!(e.contains("grid y0") && e.contains("finite"), "{e}");
+        let g = Grid::new(9, 8, 0.5, [-1.0, 2.0]).unwrap();
+        assert_eq!(
+            (g.nx(), g.ny(), g.cell(), g.x0(), g.y0()),
+            (9, 8, 0.5, -1.0, 2.0)
+        );
     }
 
     #[test]

@@ -56,6 +56,8 @@ pub mod report;
 pub mod shape;
 pub mod solution;
 pub mod stress;
+#[cfg(test)]
+mod test_cases;
 mod units;
 
 pub use case::{Body, Case, Elastic, GridSpec, Loading, Units};

@@ -12,6 +12,7 @@ use crate::convolution::{
     add_sparse_even_convolution, needed_padding, quick_padding, ConvolutionPlan, Convolver,
     KernelSpectrum, Support,
 };
+use crate::error::{Error, Result};
 use crate::layer::{cell_mean_pressure, ContactEdge};
 
 /// Something that applies the body's influence matrix.
@@ -24,7 +25,8 @@ pub trait InfluenceOperator {
     }
     /// The diagonal coefficient (displacement of a cell under its own unit pressure).
     fn self_coefficient(&self) -> f64;
-    /// `w = K p`.
+    /// `w = K p`, both of [`Self::len`] cells (the solvers' own vectors; another
+    /// length is a programming error and panics, as a slice copy does).
     fn apply(&mut self, p: &[f64], w: &mut [f64]);
     /// `w += K δ` for a `δ` that is non-zero on the `cells` only (`(index, value)`,
     /// indices increasing), if the operator can do that for less than a product
@@ -73,16 +75,26 @@ const DIRECT_SUMS_PER_FFT_UNIT: f64 = 1.25;
 const MAX_TRIMMED_PLANS: usize = 3;
 
 impl ConvolutionOperator {
-    /// Pairs a scratch with a kernel spectrum built on the same plan.
-    pub fn new(convolver: Convolver, kernel: Arc<KernelSpectrum>) -> Self {
-        ConvolutionOperator {
+    /// Pairs a scratch with a kernel spectrum built for the same grid; a kernel of
+    /// another grid is an error.
+    pub fn new(convolver: Convolver, kernel: Arc<KernelSpectrum>) -> Result<Self> {
+        let plan = convolver.plan();
+        if kernel.grid() != [plan.nx(), plan.ny()] {
+            let [kx, ky] = kernel.grid();
+            return Err(Error::invalid(
+                "influence kernel",
+                format!("a kernel of a {kx} x {ky} grid"),
+                &format!("a kernel of the plan's {} x {} grid", plan.nx(), plan.ny()),
+            ));
+        }
+        Ok(ConvolutionOperator {
             convolver,
             kernel,
             trimmed: None,
             trimmed_plans: 0,
             full: None,
             products: 0,
-        }
+        })
     }
 
     /// The trimmed DC-FFT for a field with `support`, planned now if none held
@@ -269,8 +281,8 @@ mod tests {
         let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
         let spectrum = Arc::new(plan.even_kernel_spectrum(&quadrant));
         // The operator gets the kernel as its quadrant only, as from a KernelCache.
-        let lazy = Arc::new(plan.even_kernel(quadrant.clone()));
-        let mut op = ConvolutionOperator::new(plan.convolver(), lazy);
+        let lazy = Arc::new(plan.even_kernel(quadrant.clone()).unwrap());
+        let mut op = ConvolutionOperator::new(plan.convolver(), lazy).unwrap();
         let mut reference = plan.convolver();
         // A disc of data in the middle, then a wider one, the whole grid, and the
         // first disc again.
@@ -314,6 +326,22 @@ mod tests {
     }
 
     #[test]
+    fn a_kernel_of_another_grid_is_an_error() {
+        let kernel_plan = ConvolutionPlan::new(12, 10, Parallelism::Sequential);
+        let kernel = Arc::new(kernel_plan.even_kernel(vec![1.0; 120]).unwrap());
+        let plan = ConvolutionPlan::new(10, 12, Parallelism::Sequential);
+        let e = ConvolutionOperator::new(plan.convolver(), kernel)
+            .err()
+            .unwrap();
+        let message = e.to_string();
+        assert!(message.contains("influence kernel"), "{message}");
+        assert!(
+            message.contains("12 x 10") && message.contains("10 x 12"),
+            "{message}"
+        );
+    }
+
+    #[test]
     fn direct_sums_are_taken_for_a_few_cells_and_refused_for_many() {
         let (nx, ny) = (40, 30);
         let kernel = |di: i64, dj: i64| 1.0 / (0.5 + ((di * di + 2 * dj * dj) as f64).sqrt());
@@ -321,8 +349,8 @@ mod tests {
             .map(|k| kernel((k % nx) as i64, (k / nx) as i64))
             .collect();
         let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
-        let mut op =
-            ConvolutionOperator::new(plan.convolver(), Arc::new(plan.even_kernel(quadrant)));
+        let kernel = Arc::new(plan.even_kernel(quadrant).unwrap());
+        let mut op = ConvolutionOperator::new(plan.convolver(), kernel).unwrap();
         let cells = [(5, 0.5), (7 * nx + 39, -1.5), (29 * nx + 20, 2.0)];
         let mut field = vec![0.0; nx * ny];
         for &(k, v) in &cells {

@@ -54,7 +54,7 @@ impl Case {
     ) -> Result<ContactProblem> {
         let plan = kernels.plan(grid.nx, grid.ny, parallelism);
         let spectrum = kernels.surface_spectrum(&self.body, grid, &plan)?;
-        let influence = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum));
+        let influence = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum))?;
         let n = grid.len();
         let mut shape = vec![0.0; n];
         let mut slope = vec![0.0; n];

@@ -18,8 +18,8 @@ fn elastic(young: f64, poisson: f64) -> Elastic {
 /// A Hertz pressure of radius `a` (p0 = 1) on a centred grid.
 fn hertz_pressure(grid: &Grid, a: f64) -> Vec<f64> {
     let mut p = vec![0.0; grid.len()];
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let r2 = (grid.x(i).powi(2) + grid.y(j).powi(2)) / (a * a);
             if r2 < 1.0 {
                 p[grid.index(i, j)] = (1.0 - r2).sqrt();
@@ -210,8 +210,8 @@ fn interface_tractions_and_in_plane_strains_are_continuous() {
     let grid = Grid::centred(48, 48, 0.05, [0.0, 0.0]).unwrap();
     // An off-centre, asymmetric load, so every component is exercised.
     let mut p = hertz_pressure(&grid, 0.7);
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let n = grid.index(i, j);
             p[n] *= 1.0 + 0.4 * grid.x(i) + 0.2 * grid.y(j);
         }

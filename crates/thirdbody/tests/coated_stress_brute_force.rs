@@ -312,7 +312,7 @@ fn stiff_coating_sections_agree_with_a_brute_force_fourier_quadrature() {
     };
     let solution = solve(&case, &SolverParams::default()).unwrap();
     let grid = solution.grid;
-    let (nx, ny, h) = (grid.nx, grid.ny, grid.cell);
+    let (nx, ny, h) = (grid.nx(), grid.ny(), grid.cell());
     let p = &solution.pressure;
     // Love's part: nu is 0.3 on both sides.
     let love =
@@ -333,7 +333,7 @@ fn stiff_coating_sections_agree_with_a_brute_force_fourier_quadrature() {
         worst = worst.max(err / peak);
         assert!(err < 1e-4 * peak, "{name}: {:.2e} of the peak", err / peak);
     };
-    let geometry = (nx, ny, h, grid.x0, grid.y0);
+    let geometry = (nx, ny, h, grid.x0(), grid.y0());
     // Planes: the surface and both sides of the interface, every 4th cell centre.
     let picks: Vec<(usize, usize)> = (0..ny)
         .step_by(4)

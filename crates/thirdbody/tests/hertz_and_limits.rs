@@ -120,9 +120,9 @@ fn infinite_velocity_gives_a_symmetric_pressure_and_no_friction() {
             let g = s.grid;
             let pmax = s.summary().max_pressure;
             let mut asym = 0.0f64;
-            for j in 0..g.ny {
-                for i in 0..g.nx {
-                    let mirror = g.nx - 1 - i;
+            for j in 0..g.ny() {
+                for i in 0..g.nx() {
+                    let mirror = g.nx() - 1 - i;
                     asym = asym
                         .max((s.pressure[g.index(i, j)] - s.pressure[g.index(mirror, j)]).abs());
                 }

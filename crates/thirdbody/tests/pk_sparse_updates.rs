@@ -51,7 +51,7 @@ fn solve_on(case: &Case, grid: &Grid, allow_sparse: bool) -> (Solution, usize) {
         ..SolverParams::default()
     };
     let mut kernels = KernelCache::new();
-    let plan = kernels.plan(grid.nx, grid.ny, params.parallelism);
+    let plan = kernels.plan(grid.nx(), grid.ny(), params.parallelism);
     let spectrum = kernels.surface_spectrum(&case.body, grid, &plan).unwrap();
     let shape = case
         .assemble(grid, &mut kernels, params.parallelism)
@@ -60,7 +60,7 @@ fn solve_on(case: &Case, grid: &Grid, allow_sparse: bool) -> (Solution, usize) {
         .to_vec();
     let sparse_sums = Arc::new(AtomicUsize::new(0));
     let watched = Watched {
-        inner: ConvolutionOperator::new(plan.convolver(), spectrum),
+        inner: ConvolutionOperator::new(plan.convolver(), spectrum).unwrap(),
         allow_sparse,
         sparse_sums: Arc::clone(&sparse_sums),
     };

@@ -50,8 +50,8 @@ fn errors(case: &Case, r: &Reference) -> [f64; 5] {
     let g = &s.grid;
     // Trailing edge of the centre rows: extrapolate p linearly to zero from the last
     // two loaded cells of the row nearest y = 0 (both rows next to it by symmetry).
-    let j = g.ny / 2;
-    let row = &s.pressure[j * g.nx..(j + 1) * g.nx];
+    let j = g.ny() / 2;
+    let row = &s.pressure[j * g.nx()..(j + 1) * g.nx()];
     let first = row.iter().position(|&p| p > 0.0).unwrap();
     let (p1, p2) = (row[first], row[first + 1]);
     let (x1, x2) = (g.x(first), g.x(first + 1));
@@ -207,7 +207,7 @@ fn kelvin_voigt_leading_edge_pressure_is_resolved_at_every_creep_length() {
         let p_max = sum.max_pressure / r.max_pressure - 1.0;
         let mu = sum.friction_coefficient / r.friction_coefficient - 1.0;
         // Steps below 1e-12 of the maximum are rounding: flat.
-        let (turns, dip) = row_turns(&s.pressure, s.grid.nx, 1e-12);
+        let (turns, dip) = row_turns(&s.pressure, s.grid.nx(), 1e-12);
         eprintln!(
             "V tau / b = {:.2}: p_max {p_max:+.2e}, mu {mu:+.2e}, most turns in a row \
              {turns}, largest dip {dip:.1e} of p_max",

@@ -53,13 +53,13 @@ fn johnson_tau1_max() -> (f64, f64) {
 fn hertz_cell_average(grid: &Grid, a: f64, p0: f64) -> Vec<f64> {
     let mut p = vec![0.0; grid.len()];
     let m = 16;
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let mut s = 0.0;
             for q in 0..m {
                 for r in 0..m {
-                    let x = grid.x(i) + ((r as f64 + 0.5) / m as f64 - 0.5) * grid.cell;
-                    let y = grid.y(j) + ((q as f64 + 0.5) / m as f64 - 0.5) * grid.cell;
+                    let x = grid.x(i) + ((r as f64 + 0.5) / m as f64 - 0.5) * grid.cell();
+                    let y = grid.y(j) + ((q as f64 + 0.5) / m as f64 - 0.5) * grid.cell();
                     s += (1.0 - (x * x + y * y) / (a * a)).max(0.0).sqrt();
                 }
             }
@@ -88,7 +88,7 @@ struct HertzErrors {
 const AXIS_DEPTHS: [f64; 10] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9];
 
 fn hertz_errors(grid: &Grid, p: &[f64], a: f64, p0: f64) -> HertzErrors {
-    let centre = grid.nx / 2;
+    let centre = grid.nx() / 2;
     assert!(
         grid.x(centre).abs() < 1e-12 * a,
         "needs a cell centre on the axis"
@@ -153,8 +153,8 @@ fn hertz_errors(grid: &Grid, p: &[f64], a: f64, p0: f64) -> HertzErrors {
         },
     )
     .unwrap();
-    let edge_radial = (0..grid.nx)
-        .filter(|&i| grid.x(i) > a + 0.5 * grid.cell)
+    let edge_radial = (0..grid.nx())
+        .filter(|&i| grid.x(i) > a + 0.5 * grid.cell())
         .take(3)
         .map(|i| {
             let x = grid.x(i);
@@ -242,7 +242,7 @@ fn solved_hertz() -> (Case, thirdbody::Solution, f64, f64) {
         units: Units::Dimensionless,
     };
     let solution = solve(&case, &SolverParams::default()).unwrap();
-    assert_eq!((solution.grid.nx, solution.grid.ny), (n, n));
+    assert_eq!((solution.grid.nx(), solution.grid.ny()), (n, n));
     (case, solution, a, p0)
 }
 
@@ -295,7 +295,7 @@ fn stress_request_summary_on_the_solver_hertz_pressure() {
     assert!((t / p0 - tau_ref).abs() < 0.01 * tau_ref);
     // The depth grid has steps of a/40: the maximum is within half a step.
     assert!((z / a - z_ref).abs() < 0.0125 + 0.01 * z_ref);
-    assert!(x.abs() <= solution.grid.cell);
+    assert!(x.abs() <= solution.grid.cell());
     // Surface: -(1 + 2 nu)/2 p0 at the centre. The most tensile sigma_x lies on the x
     // axis at the edge, (1 - 2 nu)/3 p0, falling outside as a^2/r^2 (Johnson §3.4).
     // The cell centred on r = a straddles the edge, so the grid's largest value lies
@@ -304,7 +304,7 @@ fn stress_request_summary_on_the_solver_hertz_pressure() {
     let centre = -(1.0 + 2.0 * NU) / 2.0;
     assert!((s.sigma_x_min.unwrap() / p0 - centre).abs() < 0.01 * centre.abs());
     let edge = (1.0 - 2.0 * NU) / 3.0;
-    let outside = edge * (a / (a + solution.grid.cell)).powi(2);
+    let outside = edge * (a / (a + solution.grid.cell())).powi(2);
     let got = s.sigma_x_max.unwrap() / p0;
     assert!(
         got > 0.99 * outside && got < 1.01 * edge,

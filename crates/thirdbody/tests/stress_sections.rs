@@ -14,8 +14,8 @@ const MAT: Elastic = Elastic {
 /// A lopsided pressure patch with no symmetry, on part of the grid.
 fn patch(grid: &Grid) -> Vec<f64> {
     let mut p = vec![0.0; grid.len()];
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let (x, y) = (grid.x(i) - 0.1, grid.y(j) + 0.05);
             let r2 = (x / 0.5).powi(2) + (y / 0.35).powi(2);
             if r2 < 1.0 {
@@ -28,9 +28,9 @@ fn patch(grid: &Grid) -> Vec<f64> {
 
 fn direct(grid: &Grid, p: &[f64], x: f64, y: f64, z: f64) -> [f64; 6] {
     let mut s = [0.0; 6];
-    let a = 0.5 * grid.cell;
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    let a = 0.5 * grid.cell();
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let q = p[grid.index(i, j)];
             if q != 0.0 {
                 let k = love_rectangle_stresses(MAT, a, a, x - grid.x(i), y - grid.y(j), z);
@@ -57,8 +57,8 @@ fn sections_equal_direct_summation() {
                         // On a row edge the surface stresses jump: the mean of the
                         // two sides is reported.
                         let (lo, hi) = (
-                            direct(&grid, &p, x, y - 1e-9 * grid.cell, z),
-                            direct(&grid, &p, x, y + 1e-9 * grid.cell, z),
+                            direct(&grid, &p, x, y - 1e-9 * grid.cell(), z),
+                            direct(&grid, &p, x, y + 1e-9 * grid.cell(), z),
                         );
                         std::array::from_fn(|c| 0.5 * (lo[c] + hi[c]))
                     } else {
@@ -80,7 +80,7 @@ fn sections_equal_direct_summation() {
     // An XZ plane through a cell-centre row, one between rows and one off-centre.
     for (y, on_row_edge) in [
         (grid.y(6), false),
-        (grid.y(6) + 0.5 * grid.cell, true),
+        (grid.y(6) + 0.5 * grid.cell(), true),
         (0.0123, false),
     ] {
         let field = stresses(
@@ -256,8 +256,8 @@ fn surface_normal_stress_is_minus_the_cell_pressure() {
     let p = patch(&grid);
     let body = Body::Homogeneous(MAT);
     let f = stresses(&grid, &p, &body, &Section::Plane { z: 0.0 }).unwrap();
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let n = f.index(i, j, 0);
             assert!((f.components[2][n] + p[grid.index(i, j)]).abs() < 1e-12);
             assert!(f.components[4][n].abs() < 1e-12 && f.components[5][n].abs() < 1e-12);

@@ -407,7 +407,7 @@ fn tight() -> SolverParams {
 
 fn compare(name: &str, a: &Solution, b: &Solution, f: &Factors) -> Result<(), String> {
     let (sa, sb) = (a.summary(), b.summary());
-    let window = a.grid.cell * a.grid.nx.max(a.grid.ny) as f64;
+    let window = a.grid.cell() * a.grid.nx().max(a.grid.ny()) as f64;
     let (l, p, q) = (f.length, f.modulus, f.force());
     let mut worst: Vec<(&str, f64)> = vec![
         (

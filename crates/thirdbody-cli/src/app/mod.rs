@@ -30,14 +30,13 @@ use std::time::Instant;
 use crate::heightmap;
 use crate::sweep::command::{self as sweep, MergeArgs, SweepArgs};
 use anyhow::{Context, Result};
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use thirdbody::case_file::{parse_case_file, CaseFile};
 use thirdbody::Parallelism;
 
 #[derive(Parser)]
 #[command(
     name = "thirdbody",
-    version,
     about = "Sliding contact through a nonlinear viscoelastic third-body layer"
 )]
 struct Cli {
@@ -57,8 +56,18 @@ enum Command {
     Sweep(SweepArgs),
     /// Join the folders of a sharded sweep (docs/sweeps.md).
     Merge(MergeArgs),
-    /// Print, as BibTeX, the works the computations rely on (cite them with results).
-    Cite,
+    /// Print the works a case's computation relies on and what each is used for
+    /// (without a case: every work thirdbody may rely on, as BibTeX).
+    Cite(CiteArgs),
+}
+
+#[derive(Args)]
+struct CiteArgs {
+    /// The case file (TOML, see docs/case-file.md).
+    case: Option<PathBuf>,
+    /// Print the case's works as BibTeX entries.
+    #[arg(long)]
+    bibtex: bool,
 }
 
 #[derive(Args)]
@@ -102,7 +111,8 @@ pub fn main(args: impl IntoIterator<Item = std::ffi::OsString>) -> ExitCode {
 
 /// As [`main`], returning the exit code as a number (for the Python script).
 pub fn run_command_line(args: impl IntoIterator<Item = std::ffi::OsString>) -> u8 {
-    let cli = Cli::parse_from(args);
+    let command = Cli::command().version(version());
+    let cli = Cli::from_arg_matches(&command.get_matches_from(args)).unwrap_or_else(|e| e.exit());
     match run(cli) {
         Ok(()) => 0,
         Err(e) => {
@@ -111,6 +121,17 @@ pub fn run_command_line(args: impl IntoIterator<Item = std::ffi::OsString>) -> u
             exit_code(&e)
         }
     }
+}
+
+/// What `--version` prints after the program's name: the version and the git commit
+/// the library was built from (the `commit` of `summary.json`), "unknown" when it was
+/// not built from a git checkout.
+fn version() -> &'static str {
+    static VERSION: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    VERSION.get_or_init(|| {
+        let commit = thirdbody::provenance::commit().unwrap_or("unknown");
+        format!("{} (commit {commit})", thirdbody::provenance::VERSION)
+    })
 }
 
 /// 2 for bad input, 1 for everything else.
@@ -136,11 +157,28 @@ fn run(cli: Cli) -> Result<()> {
         Command::Reproduce(args) => reproduce::run(&args),
         Command::Sweep(args) => sweep::sweep_command(&args),
         Command::Merge(args) => sweep::merge_command(&args),
-        Command::Cite => {
-            print!("{}", thirdbody::provenance::REFERENCES);
-            Ok(())
+        Command::Cite(args) => cite(&args),
+    }
+}
+
+/// `thirdbody cite`: the works of a case (one per line, or as BibTeX), or every work
+/// as BibTeX without a case.
+fn cite(args: &CiteArgs) -> Result<()> {
+    let Some(path) = &args.case else {
+        print!("{}", thirdbody::provenance::REFERENCES);
+        return Ok(());
+    };
+    let (file, _) = read_case(path)?;
+    let references = file.references();
+    if args.bibtex {
+        let entries: Vec<&str> = references.iter().map(|r| r.work.bibtex()).collect();
+        print!("{}", entries.join("\n"));
+    } else {
+        for r in &references {
+            println!("{}\n    for {}", r.work.citation, r.used_for);
         }
     }
+    Ok(())
 }
 
 /// Largest case file read: a case is a few hundred bytes; a table law of a few

@@ -177,9 +177,9 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
     }
     if o.formats.vtk {
         out.write("surface.vti", |path| {
-            let xs: Vec<f64> = (0..g.nx).map(|i| g.x(i)).collect();
-            let ys: Vec<f64> = (0..g.ny).map(|j| g.y(j)).collect();
-            let lattice = vtk::Lattice::from_axes([&xs, &ys, &[0.0]], g.cell)?;
+            let xs: Vec<f64> = (0..g.nx()).map(|i| g.x(i)).collect();
+            let ys: Vec<f64> = (0..g.ny()).map(|j| g.y(j)).collect();
+            let lattice = vtk::Lattice::from_axes([&xs, &ys, &[0.0]], g.cell())?;
             vtk::write_image_data(path, &lattice, &fields)
         })?;
     }
@@ -195,12 +195,12 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
 
     let u = plot_units(case, solution);
     let (x_label, y_label, p_label) = (u.x(), u.y(), u.pressure());
-    let scaled = Grid {
-        cell: u.length(g.cell),
-        x0: u.length(g.x0),
-        y0: u.length(g.y0),
-        ..*g
-    };
+    let scaled = Grid::new(
+        g.nx(),
+        g.ny(),
+        u.length(g.cell()),
+        [u.length(g.x0()), u.length(g.y0())],
+    )?;
     let p_shown: Vec<f64> = p.iter().map(|&v| u.stress(v)).collect();
     out.write("pressure_map.png", |path| {
         plot::field_map(
@@ -218,8 +218,8 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
         let j = row_nearest_y0(g);
         let series = [Series {
             label: format!("y = {}", u.length_text(g.y(j))),
-            x: (0..g.nx).map(|i| scaled.x(i)).collect(),
-            y: p_shown[j * g.nx..(j + 1) * g.nx].to_vec(),
+            x: (0..g.nx()).map(|i| scaled.x(i)).collect(),
+            y: p_shown[j * g.nx()..(j + 1) * g.nx()].to_vec(),
             dashed: false,
         }];
         plot::profile_plot(
@@ -254,10 +254,10 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
 pub fn plot_units(case: &Case, solution: &Solution) -> units::PlotUnits {
     let g = &solution.grid;
     let window = [
-        g.x0,
-        g.y0,
-        g.x0 + g.nx as f64 * g.cell,
-        g.y0 + g.ny as f64 * g.cell,
+        g.x0(),
+        g.y0(),
+        g.x0() + g.nx() as f64 * g.cell(),
+        g.y0() + g.ny() as f64 * g.cell(),
     ]
     .iter()
     .fold(0.0f64, |m, v| m.max(v.abs()));
@@ -272,14 +272,14 @@ pub fn contact_x(solution: &Solution) -> Option<(f64, f64)> {
 
 /// The row whose centre is nearest y = 0 (the first of two equally near).
 pub fn row_nearest_y0(g: &Grid) -> usize {
-    (0..g.ny)
+    (0..g.ny())
         .min_by(|&a, &b| g.y(a).abs().total_cmp(&g.y(b).abs()))
         .unwrap_or(0)
 }
 
 /// A grid field as a float64 NPY array of shape (ny, nx).
 fn write_field_npy(path: &Path, g: &Grid, field: &[f64]) -> Result<()> {
-    let array = Array2::from_shape_vec((g.ny, g.nx), field.to_vec())
+    let array = Array2::from_shape_vec((g.ny(), g.nx()), field.to_vec())
         .context("field size does not match the grid")?;
     ndarray_npy::write_npy(path, &array)?;
     Ok(())
@@ -290,9 +290,9 @@ fn write_field_npy(path: &Path, g: &Grid, field: &[f64]) -> Result<()> {
 fn write_pressure_csv(path: &Path, g: &Grid, p: &[f64]) -> Result<()> {
     let mut w = BufWriter::new(File::create(path)?);
     writeln!(w, "x,y,pressure")?;
-    for j in 0..g.ny {
+    for j in 0..g.ny() {
         let y = g.y(j);
-        for i in 0..g.nx {
+        for i in 0..g.nx() {
             writeln!(w, "{},{},{}", g.x(i), y, p[g.index(i, j)])?;
         }
     }

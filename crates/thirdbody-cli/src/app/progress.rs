@@ -80,7 +80,8 @@ impl Spinner {
                 let [wx, wy] = grid.half_widths();
                 self.shown.bar.set_message(format!(
                     "window {attempt}: {} x {} cells, half widths {wx:.3e} x {wy:.3e}",
-                    grid.nx, grid.ny
+                    grid.nx(),
+                    grid.ny()
                 ));
             }
             Progress::Iteration {

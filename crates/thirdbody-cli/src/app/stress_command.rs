@@ -99,13 +99,13 @@ fn read_pressure(dir: &Path, grid: &Grid) -> Result<Vec<f64>> {
     let p = if npy.exists() {
         let a: Array2<f64> = ndarray_npy::read_npy(&npy)
             .map_err(|e| bad(format!("cannot read {}: {e}", npy.display())))?;
-        if a.dim() != (grid.ny, grid.nx) {
+        if a.dim() != (grid.ny(), grid.nx()) {
             return Err(bad(format!(
                 "{} has shape {:?}; its case.toml solves to ({}, {})",
                 npy.display(),
                 a.dim(),
-                grid.ny,
-                grid.nx
+                grid.ny(),
+                grid.nx()
             )));
         }
         a.iter().copied().collect()

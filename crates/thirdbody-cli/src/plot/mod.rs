@@ -120,25 +120,25 @@ pub fn field_map(
     colour_label: &str,
     outline: Option<&[f64]>,
 ) -> Result<()> {
-    let (nx, ny) = (grid.nx, grid.ny);
-    if nx < 2 || ny < 2 || !(grid.cell.is_finite() && grid.cell > 0.0) {
+    let (nx, ny) = (grid.nx(), grid.ny());
+    if nx < 2 || ny < 2 || !(grid.cell().is_finite() && grid.cell() > 0.0) {
         bail!(
             "field map grid of {nx} x {ny} cells of side {}: needs at least 2 x 2 cells of \
              finite positive side",
-            grid.cell
+            grid.cell()
         );
     }
-    if !(grid.x0.is_finite() && grid.y0.is_finite()) {
+    if !(grid.x0().is_finite() && grid.y0().is_finite()) {
         bail!(
             "field map grid origin ({}, {}) must be finite",
-            grid.x0,
-            grid.y0
+            grid.x0(),
+            grid.y0()
         );
     }
     check_len("field map field", field.len(), nx * ny, "grid nx * ny")?;
     check_finite("field map field", field)?;
-    let cols = Axis::uniform(nx, grid.x0, grid.cell);
-    let rows = Axis::uniform(ny, grid.y0, grid.cell);
+    let cols = Axis::uniform(nx, grid.x0(), grid.cell());
+    let rows = Axis::uniform(ny, grid.y0(), grid.cell());
     let legend_corner = match outline {
         Some(o) if o.len() == nx * ny => Corner::emptiest(nx, ny, |k| o[k] > 0.0),
         _ => Corner::UpperRight,

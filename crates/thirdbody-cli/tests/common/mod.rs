@@ -7,6 +7,24 @@ pub mod recorded;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// The base case of the tests: a layer-free sphere pressed on a homogeneous
+/// half-space on a small grid (Hertz: R = 1, E = 1, nu = 0.3, Q = 5e-6, 32 x 32).
+pub const SPHERE: &str = r#"
+[slider]
+shape = "sphere"
+radius = 1.0
+
+[substrate]
+young = 1.0
+poisson = 0.3
+
+[loading]
+normal_load = 5e-6
+
+[grid]
+cells = [32, 32]
+"#;
+
 /// One run of the binary and the folder it wrote into.
 pub struct Run {
     pub output: Output,

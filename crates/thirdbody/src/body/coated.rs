@@ -67,6 +67,7 @@ use super::quadrature::GaussLegendre;
 use super::ElasticBody;
 use crate::case::Elastic;
 use crate::error::{require_positive, Error, Result};
+use crate::provenance::{self, Reference};
 use crate::stress::{CoatedStressKernels, Side, StressKernels};
 
 /// A coating of thickness `thickness` perfectly bonded to a substrate half-space.
@@ -102,6 +103,22 @@ impl ElasticBody for CoatedHalfSpace {
         self.coating
             .plane_strain_modulus()
             .min(self.substrate.plane_strain_modulus())
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        let response = "the coated body's Fourier response (surface and stress kernels)";
+        vec![
+            Reference::new(provenance::CHEN, response),
+            Reference::new(provenance::OSULLIVAN_KING, response),
+            Reference::new(
+                provenance::PERRIOT_BARTHEL,
+                "the coated body's response in a cancellation-free form",
+            ),
+            Reference::new(
+                provenance::LOVE,
+                "the substrate's part of the coated kernels (uniform pressure on a rectangle)",
+            ),
+        ]
     }
 }
 
@@ -252,6 +269,10 @@ fn sinh_minus_identity(t: f64) -> f64 {
 
 /// The coating factor `A(k h1)` of the surface response (see the module doc);
 /// accepts -1 < nu <= 0.5 (the caller validates materials).
+///
+/// Not part of the API: public only for the quadratures `tests/coated_kernel.rs`
+/// checks the kernel against.
+#[doc(hidden)]
 pub fn coating_factor(coating: Elastic, substrate: Elastic, k_thickness: f64) -> f64 {
     TransferFactor::new(coating, substrate).factor(k_thickness)
 }
@@ -318,6 +339,10 @@ const TAU_NODES: usize = 8;
 /// Displacement at cell offset `(di, dj)` (0 <= di < nx, 0 <= dj < ny, row-major
 /// `dj * nx + di`) per unit pressure on one square cell of side `cell`, on the
 /// coated body. The kernel is even in di and dj.
+///
+/// Not part of the API (bodies give their kernels through [`ElasticBody`]): public
+/// only for `benches/coated_kernel.rs` and the checks in `tests/coated_kernel.rs`.
+#[doc(hidden)]
 pub fn coated_surface_kernel(
     coating: Elastic,
     thickness: f64,

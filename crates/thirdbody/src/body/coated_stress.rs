@@ -220,6 +220,10 @@ pub(crate) fn rotate(kx: f64, ky: f64, s: [f64; 4]) -> StressTransfer {
 /// Stress transfer at depth z >= 0 (coating side at z = h1 itself), for a wave
 /// vector (kx, ky) != 0. At k = 0 the response depends on the direction of
 /// approach; the limit along x is returned.
+///
+/// Not part of the API (bodies give their stresses through [`crate::stress`]):
+/// public only for the independent transforms of `tests/coated_stress.rs`.
+#[doc(hidden)]
 pub fn coated_stress_transfer(
     coating: Elastic,
     thickness: f64,
@@ -237,6 +241,9 @@ pub fn coated_stress_transfer(
 }
 
 /// Both sides of the interface z = h1: `(coating side, substrate side)`.
+///
+/// Not part of the API: public only for `tests/coated_stress.rs`.
+#[doc(hidden)]
 pub fn interface_stress_transfer(
     coating: Elastic,
     thickness: f64,

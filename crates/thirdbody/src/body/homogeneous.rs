@@ -10,6 +10,7 @@
 use super::ElasticBody;
 use crate::case::Elastic;
 use crate::error::Result;
+use crate::provenance::{self, Reference};
 use crate::stress::{HomogeneousStressKernels, Side, StressKernels};
 use rayon::prelude::*;
 
@@ -42,6 +43,13 @@ impl ElasticBody for HomogeneousHalfSpace {
 
     fn softest_modulus(&self) -> f64 {
         self.material.plane_strain_modulus()
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        vec![Reference::new(
+            provenance::LOVE,
+            "the homogeneous body's surface and stress kernels (uniform pressure on a rectangle)",
+        )]
     }
 }
 

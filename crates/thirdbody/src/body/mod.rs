@@ -25,6 +25,7 @@ use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum};
 use crate::error::Result;
 use crate::grid::Grid;
+use crate::provenance::Reference;
 use crate::stress::{Side, StressKernels};
 
 /// An elastic body as the solvers and the stress sections see it.
@@ -43,6 +44,8 @@ pub trait ElasticBody: std::fmt::Debug + Send + Sync {
     /// The smallest plane-strain modulus `E / (1 - nu^2)` of its materials (the
     /// automatic window's Hertz estimate uses it).
     fn softest_modulus(&self) -> f64;
+    /// The works its kernels come from, with what each gives.
+    fn references(&self) -> Vec<Reference>;
 }
 
 impl Body {
@@ -63,16 +66,6 @@ impl Body {
     }
 }
 
-/// The surface-displacement kernel spectrum of `body` on `grid`'s cells, computed
-/// afresh (use [`crate::KernelCache`] to keep it across solves).
-pub fn surface_kernel_spectrum(
-    body: &Body,
-    grid: &Grid,
-    plan: &Arc<ConvolutionPlan>,
-) -> Result<KernelSpectrum> {
-    Ok(plan.respectrum(&surface_kernel(body, grid, plan)?))
-}
-
 /// The surface-displacement kernel of `body` on `grid`'s cells, given by its
 /// quadrant only: the spectrum on a padding is built when a product needs it
 /// ([`ConvolutionPlan::even_kernel`]).
@@ -84,5 +77,5 @@ pub fn surface_kernel(
     let quadrant = body
         .model()
         .surface_kernel_quadrant(grid.cell, grid.nx, grid.ny)?;
-    Ok(plan.even_kernel(quadrant))
+    plan.even_kernel(quadrant)
 }

@@ -741,11 +741,7 @@ mod tests {
 
     #[test]
     fn an_observer_that_breaks_interrupts_the_solve() {
-        let text = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
-                    poisson = 0.3\n[loading]\nnormal_load = 5e-6\n[grid]\ncells = [32, 32]\n";
-        let case = crate::case_file::parse_case_file(text, &mut |_, _| unreachable!())
-            .unwrap()
-            .case;
+        let case = crate::test_cases::parse(crate::test_cases::HERTZ);
         let mut iterations = 0;
         let result = solve_observed(&case, &SolverParams::default(), &mut |p| match p {
             Progress::Iteration { .. } => {

@@ -259,6 +259,17 @@ impl Layer {
         )
     }
 
+    /// Whether the layer is a linear spring bed at `velocity`, `w3 = c p` (what
+    /// [`LayerResponse::winkler_compliance`] finds on any grid): a linear law and
+    /// nothing that creeps in the time a cell passes (infinite velocity, or a creep
+    /// form of a glassy spring only). The contact problem is then symmetric and
+    /// Polonsky–Keer conjugate gradients solve it.
+    pub fn is_spring_bed(&self, velocity: f64) -> bool {
+        let form = self.rheology.creep_form();
+        matches!(self.law, ComplianceLaw::Linear)
+            && (velocity == f64::INFINITY || (form.branches.is_empty() && form.flow.is_none()))
+    }
+
     /// The linear layer the automatic window and the initial guesses assume: the
     /// relaxed compliance (the largest contact), creeping at the rate of the flow.
     pub fn estimate(&self) -> LayerEstimate {
@@ -301,5 +312,35 @@ pub(crate) mod tests {
     /// The paper's sigmoid layer (C0 = 0.02, T = 1) for the layer modules' tests.
     pub(crate) fn sigmoid(delta: f64, p0: f64, integration: Integration) -> Layer {
         Layer::maxwell(0.02, 1.0, ComplianceLaw::Sigmoid { delta, p0 }, integration)
+    }
+
+    #[test]
+    fn a_spring_bed_is_what_the_rows_find_symmetric() {
+        let zener = Layer {
+            rheology: Rheology::Zener {
+                glassy_compliance: 0.01,
+                compliance: 0.02,
+                retardation_time: 0.5,
+            },
+            law: ComplianceLaw::Linear,
+            integration: Integration::Exact,
+        };
+        let layers = [
+            Layer::maxwell(0.02, 1.0, ComplianceLaw::Linear, Integration::Exact),
+            sigmoid(0.5, 0.01, Integration::Exact),
+            zener,
+        ];
+        for layer in &layers {
+            for velocity in [1e-3, 1.0, 1e3, f64::INFINITY] {
+                for cell in [1e-3, 0.05] {
+                    let rows = ViscoelasticRows::new(layer.clone(), 8, 2, cell, velocity);
+                    assert_eq!(
+                        layer.is_spring_bed(velocity),
+                        rows.winkler_compliance().is_some(),
+                        "{layer:?} at V = {velocity}, h = {cell}"
+                    );
+                }
+            }
+        }
     }
 }

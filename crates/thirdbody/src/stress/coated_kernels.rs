@@ -275,7 +275,9 @@ impl CoatedStressKernels {
     }
 
     /// [`StressKernels::fill`] with a given method (the others are kept for tests
-    /// that measure the error of the switch).
+    /// that measure the error of the switch). Not part of the API: public only for
+    /// `tests/coated_tables` and the limits of `tests/coated_stress_limits.rs`.
+    #[doc(hidden)]
     pub fn fill_with(
         &self,
         z: f64,
@@ -501,7 +503,9 @@ impl CoatedStressKernels {
     /// The largest wave-frame remainder at the wavenumbers `1 / cell` and `pi / cell`
     /// at the surface and on both sides of the interface (per unit pressure): about
     /// `(k l)^2` while the coating's length l (h1, or its membrane length when stiff)
-    /// is short against the cell.
+    /// is short against the cell. Not part of the API: public only for the report of
+    /// `tests/coated_stress_limits.rs`.
+    #[doc(hidden)]
     pub fn remainder_at_grid_scale(&self, cell: f64) -> f64 {
         let h1 = self.thickness;
         let mut largest = 0.0f64;

@@ -97,8 +97,8 @@ pub fn fig3(
             Some(p),
         )
     })?;
-    let rows: Vec<Vec<f64>> = (0..g.ny)
-        .flat_map(|j| (0..g.nx).map(move |i| (i, j)))
+    let rows: Vec<Vec<f64>> = (0..g.ny())
+        .flat_map(|j| (0..g.nx()).map(move |i| (i, j)))
         .map(|(i, j)| vec![g.x(i), g.y(j), p[g.index(i, j)], c[g.index(i, j)]])
         .collect();
     files.table_csv("fig03.csv", &[L.x, L.y, L.pressure, L.compliance], &rows)?;

@@ -91,8 +91,8 @@ pub fn pressure_row(s: &Solution, label: String, dashed: bool) -> Series {
     let j = row_nearest_y0(g);
     Series {
         label,
-        x: (0..g.nx).map(|i| g.x(i)).collect(),
-        y: s.pressure[j * g.nx..(j + 1) * g.nx].to_vec(),
+        x: (0..g.nx()).map(|i| g.x(i)).collect(),
+        y: s.pressure[j * g.nx()..(j + 1) * g.nx()].to_vec(),
         dashed,
     }
 }

@@ -205,7 +205,7 @@ fn write_samples() {
         let big = Grid::centred(1024, 512, 1.0 / 256.0, [0.0, 0.0]).unwrap();
         let field: Vec<f64> = (0..big.len())
             .map(|k| {
-                let (x, y) = (big.x(k % big.nx), big.y(k / big.nx));
+                let (x, y) = (big.x(k % big.nx()), big.y(k / big.nx()));
                 (1.0 - (x - 0.3).powi(2) - y * y).max(0.0).sqrt()
             })
             .collect();

@@ -327,9 +327,9 @@ fn no_plot_kind_overlaps_texts_or_covers_extremes_with_its_legend() {
     let _ = render_field(d, "pressure_map.svg", true);
     paths.push(d.join("pressure_map.svg"));
     let (grid, _, hertz) = disc_case();
-    let tall = thirdbody::Grid::centred(grid.ny, grid.nx, grid.cell, [0.0, 0.0]).unwrap();
+    let tall = thirdbody::Grid::centred(grid.ny(), grid.nx(), grid.cell(), [0.0, 0.0]).unwrap();
     let transposed: Vec<f64> = (0..tall.len())
-        .map(|k| hertz[(k % tall.nx) * grid.nx + k / tall.nx])
+        .map(|k| hertz[(k % tall.nx()) * grid.nx() + k / tall.nx()])
         .collect();
     let p = d.join("tall.svg");
     crate::plot::field_map(

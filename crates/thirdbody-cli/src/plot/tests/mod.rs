@@ -80,12 +80,12 @@ pub(super) fn disc_case() -> (Grid, Vec<f64>, Vec<f64>) {
     let grid = Grid::centred(96, 48, 1.0 / 24.0, [0.0, 0.0]).unwrap();
     let mut indicator = vec![0.0; grid.len()];
     let mut hertz = vec![0.0; grid.len()];
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
             let r = ((grid.x(i) - 0.5).powi(2) + grid.y(j).powi(2)).sqrt() / 0.8;
             if r < 1.0 {
-                indicator[j * grid.nx + i] = 1.0;
-                hertz[j * grid.nx + i] = (1.0 - r * r).sqrt();
+                indicator[j * grid.nx() + i] = 1.0;
+                hertz[j * grid.nx() + i] = (1.0 - r * r).sqrt();
             }
         }
     }

@@ -15,6 +15,7 @@ use super::{
     RheologyModel, SolverUnits, MAX_BRANCHES,
 };
 use crate::error::{require_positive, Error, Result};
+use crate::provenance::{self, Reference};
 
 pub(super) const PRESET: Preset = Preset {
     name: "box_spectrum",
@@ -119,6 +120,16 @@ impl RheologyModel for BoxSpectrum {
             branches: box_spectrum_branches(self.compliance, self.shortest_time, self.longest_time),
             flow: None,
         }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        vec![
+            Reference::new(provenance::TOBOLSKY, "the box retardation spectrum"),
+            Reference::new(
+                provenance::TSCHOEGL,
+                "the box spectrum's complex and creep compliances",
+            ),
+        ]
     }
 }
 

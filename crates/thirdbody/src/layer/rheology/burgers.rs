@@ -7,6 +7,7 @@ use super::{
     SolverUnits,
 };
 use crate::error::{require_positive, Result};
+use crate::provenance::Reference;
 
 pub(super) const PRESET: Preset = Preset {
     name: "burgers",
@@ -99,6 +100,10 @@ impl RheologyModel for Burgers {
                 time: self.relaxation_time,
             }),
         }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        Vec::new()
     }
 }
 

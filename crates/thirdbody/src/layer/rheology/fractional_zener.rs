@@ -17,6 +17,7 @@ use super::{
 use std::f64::consts::PI;
 
 use crate::error::{require_positive, Error, Result};
+use crate::provenance::{self, Reference};
 
 pub(super) const PRESET: Preset = Preset {
     name: "fractional_zener",
@@ -125,6 +126,19 @@ impl RheologyModel for FractionalZener {
             ),
             flow: None,
         }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        vec![
+            Reference::new(
+                provenance::MAINARDI,
+                "the fractional Zener body and its closed-form retardation spectrum",
+            ),
+            Reference::new(
+                provenance::TREFETHEN_WEIDEMAN,
+                "the fractional Zener spectrum discretised into branches (trapezoidal rule)",
+            ),
+        ]
     }
 }
 

@@ -6,6 +6,7 @@ use super::{
     CreepForm, KeyKind, KeyReader, Preset, RetardationBranch, Rheology, RheologyModel, SolverUnits,
 };
 use crate::error::{require_positive, Result};
+use crate::provenance::Reference;
 
 pub(super) const PRESET: Preset = Preset {
     name: "kelvin_voigt",
@@ -76,5 +77,9 @@ impl RheologyModel for KelvinVoigt {
             }],
             flow: None,
         }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        Vec::new()
     }
 }

@@ -3,6 +3,7 @@
 
 use super::{CreepForm, Flow, KeyKind, KeyReader, Preset, Rheology, RheologyModel, SolverUnits};
 use crate::error::{require_positive, Result};
+use crate::provenance::{self, Reference};
 
 pub(super) const PRESET: Preset = Preset {
     name: "maxwell",
@@ -75,6 +76,13 @@ impl RheologyModel for Maxwell {
                 time: self.relaxation_time,
             }),
         }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        vec![Reference::new(
+            provenance::PAPER,
+            "the nonlinear Maxwell layer (eq. 2)",
+        )]
     }
 }
 

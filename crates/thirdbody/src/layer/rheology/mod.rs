@@ -35,6 +35,7 @@ pub use keys::{KeyKind, KeyReader, KeyValue};
 pub use relaxation_prony::relaxation_to_creep;
 
 use crate::error::{Error, Result};
+use crate::provenance::Reference;
 
 /// The largest number of branches a layer may have.
 pub const MAX_BRANCHES: usize = 1000;
@@ -172,6 +173,9 @@ pub trait RheologyModel: std::fmt::Debug {
     fn reference_compliance(&self) -> f64;
     /// The creep form (parameters assumed valid).
     fn creep_form(&self) -> CreepForm;
+    /// The works the preset's model or its discretisation comes from (those its
+    /// module's documentation cites), with what each gives.
+    fn references(&self) -> Vec<Reference>;
 }
 
 fn require_non_negative(field: &str, value: f64) -> Result<()> {
@@ -377,6 +381,11 @@ impl Rheology {
     /// The creep form of the preset (parameters assumed valid).
     pub fn creep_form(&self) -> CreepForm {
         self.model().creep_form()
+    }
+
+    /// See [`RheologyModel::references`].
+    pub fn references(&self) -> Vec<Reference> {
+        self.model().references()
     }
 
     /// See [`RheologyModel::reference_compliance`].

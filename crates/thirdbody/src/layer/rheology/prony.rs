@@ -7,6 +7,7 @@ use super::{
     RetardationBranch, Rheology, RheologyModel, SolverUnits,
 };
 use crate::error::{require_positive, Result};
+use crate::provenance::Reference;
 
 pub(super) const PRESET: Preset = Preset {
     name: "prony",
@@ -103,5 +104,9 @@ impl RheologyModel for Prony {
                 time: eta,
             }),
         }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        Vec::new()
     }
 }

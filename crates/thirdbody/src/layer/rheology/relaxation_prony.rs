@@ -9,6 +9,7 @@ use super::{
     RelaxationBranch, RetardationBranch, Rheology, RheologyModel, SolverUnits,
 };
 use crate::error::{require_positive, Error, Result};
+use crate::provenance::{self, Reference};
 
 pub(super) const PRESET: Preset = Preset {
     name: "relaxation_prony",
@@ -114,6 +115,19 @@ impl RheologyModel for RelaxationProny {
 
     fn creep_form(&self) -> CreepForm {
         relaxation_to_creep(self.equilibrium_stiffness, &self.branches)
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        vec![
+            Reference::new(
+                provenance::TSCHOEGL,
+                "the exact conversion of a relaxation Prony series to the creep form",
+            ),
+            Reference::new(
+                provenance::PARK_SCHAPERY,
+                "the exact conversion of a relaxation Prony series to the creep form",
+            ),
+        ]
     }
 }
 

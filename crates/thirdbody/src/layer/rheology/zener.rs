@@ -5,6 +5,7 @@ use super::{
     CreepForm, KeyKind, KeyReader, Preset, RetardationBranch, Rheology, RheologyModel, SolverUnits,
 };
 use crate::error::{require_positive, Result};
+use crate::provenance::Reference;
 
 pub(super) const PRESET: Preset = Preset {
     name: "zener",
@@ -95,6 +96,10 @@ impl RheologyModel for Zener {
             }],
             flow: None,
         }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        Vec::new()
     }
 }
 
