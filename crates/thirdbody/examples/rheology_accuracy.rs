@@ -2,7 +2,8 @@
 //! grid-converged value, over creep lengths V tau from far below a cell to far above
 //! the contact: for each preset and V, mu and the energy-balance friction at the
 //! default 128^2 against a 512^2 solve (rigid base, E = 1e6, or elastic body,
-//! E = 1). Sphere R = 1, Q = 5e-6, linear law, tau = 1, automatic window. Prints one
+//! E = 1), for Kelvin–Voigt, Zener, Burgers, a 10-branch Prony series, fractional
+//! Zener and a box spectrum. Sphere R = 1, Q = 5e-6, linear law, automatic window. Prints one
 //! line per case: V, V tau / h, mu(128), mu(512), their relative difference, and the
 //! energy balance (mu_dissipation - mu) / mu at both grids.
 //!
