@@ -50,10 +50,6 @@ pub fn solve_dense(case: &Case, grid: &Grid, tolerance: f64) -> Result<Solution>
     solve_dense_problem(&problem, tolerance)
 }
 
-/// Most dense solves with the contacts' leading edges relocated (as the
-/// production solver does, [`LayerResponse::relocated`]).
-const MAX_RELOCATIONS: usize = 12;
-
 /// Solves an assembled problem on its window with the dense method.
 pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<Solution> {
     let mut relocated: Option<Box<dyn LayerResponse>> = None;
@@ -64,7 +60,7 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
         solves += 1;
         let moved = response.and_then(|l| l.relocated(&solution.pressure, &solution.gap));
         match moved {
-            Some(l) if solves <= MAX_RELOCATIONS => relocated = Some(l),
+            Some(l) if solves <= crate::contact::MAX_RELOCATIONS => relocated = Some(l),
             _ => return Ok(solution),
         }
     }

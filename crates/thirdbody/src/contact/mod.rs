@@ -607,7 +607,7 @@ pub fn solve_problem(
 /// Most solves again with the contacts' leading edges located inside their cells
 /// ([`crate::layer::LayerResponse::relocated`]; two or three suffice: an edge moves
 /// with the approach, which hardly depends on it).
-const MAX_RELOCATIONS: usize = 12;
+pub(crate) const MAX_RELOCATIONS: usize = 12;
 
 /// The gap `w_body + w_layer + f - D` at the pressure `p` and approach `approach`.
 fn gap_at(problem: &mut ContactProblem, p: &[f64], approach: f64) -> Vec<f64> {

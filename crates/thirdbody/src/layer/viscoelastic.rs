@@ -346,6 +346,15 @@ impl BranchStep {
     }
 }
 
+/// `sum_k b_k (C_k / C[0]) entry_exit_gain_k(theta)`: the share of a cell's `J_ii`
+/// that reaches it through the exit value of an upstream entry cell at `theta`.
+fn entry_share(branches: &[BranchStep], theta: f64) -> f64 {
+    branches
+        .iter()
+        .map(|b| b.keep_half * b.scale * b.entry_exit_gain(theta))
+        .sum()
+}
+
 /// `(1 - e^(-y) (1 + y)) / y`: a branch started at zero and driven over `y` creep
 /// lengths by a forcing that rises by 1 per creep length, less the same forcing's
 /// final value times `1 - e^(-y)`, changes sign: this is what it lags behind (`y/2`
@@ -697,11 +706,7 @@ impl ViscoelasticRows {
                             *e *= (-free).exp();
                         }
                         let y = theta * b.cells_per_creep_length;
-                        let gains = (
-                            (-y).exp(),
-                            -(-y).exp_m1(),
-                            if y.is_infinite() { 1.0 } else { ramp_gain(y) },
-                        );
+                        let gains = ((-y).exp(), -(-y).exp_m1(), ramp_gain(y));
                         row += b.segment_work(e, edge, (p, f), y, gains);
                         row += b.half_cell_work(e, (p, f), exit);
                     }
@@ -803,12 +808,8 @@ impl ViscoelasticRows {
                 .sum();
             diagonal[k] = (self.glassy_scale + own) * df + 0.5 * self.flow_per_cell * dq;
             if k % self.nx > 0 {
-                let share: f64 = self
-                    .branches
-                    .iter()
-                    .map(|b| b.keep_half * b.scale * b.entry_exit_gain(theta))
-                    .sum();
-                diagonal[k - 1] += (lag_self + share) * forcing_slope[k - 1];
+                diagonal[k - 1] +=
+                    (lag_self + entry_share(&self.branches, theta)) * forcing_slope[k - 1];
             }
         }
         ViscoelasticJacobian {
@@ -1038,10 +1039,7 @@ impl ViscoelasticJacobian {
     /// `J_ii` that reaches it through the exit value of an upstream entry cell at
     /// `theta`.
     fn entry_share(&self, theta: f64) -> f64 {
-        self.branches
-            .iter()
-            .map(|b| b.keep_half * b.scale * b.entry_exit_gain(theta))
-            .sum()
+        entry_share(&self.branches, theta)
     }
 
     /// Solves `(J + extra_diagonal I) y = r` restricted to the cells where `active`
