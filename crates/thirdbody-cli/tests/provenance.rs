@@ -124,7 +124,7 @@ fn cite_prints_the_references_as_bibtex() {
     let text = String::from_utf8(run.stdout).unwrap();
     assert_eq!(
         text.matches("@article{").count() + text.matches("@book{").count(),
-        13
+        14
     );
     assert!(text.contains("doi     = {10.3390/lubricants11080333}"));
     for author in [

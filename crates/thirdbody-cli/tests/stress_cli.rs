@@ -159,8 +159,13 @@ fn a_coated_body_reports_both_sides_of_the_interface_and_a_block_as_vtk() {
     let coating = stress_of(&summary, "interface_sigma_x_max_coating");
     let substrate = stress_of(&summary, "interface_sigma_x_max_substrate");
     assert!(coating != substrate, "sigma_x jumps across the interface");
-    let c = read4(&dir.join("stress_interface_coating.npy"));
-    let s = read4(&dir.join("stress_interface_substrate.npy"));
+    // The same, per interface by index.
+    let interface = &summary["stress"]["interfaces"][0];
+    assert_eq!(interface["index"], 0);
+    assert_eq!(interface["above"]["sigma_x_max"].as_f64(), Some(coating));
+    assert_eq!(interface["below"]["sigma_x_max"].as_f64(), Some(substrate));
+    let c = read4(&dir.join("stress_interface_0_above.npy"));
+    let s = read4(&dir.join("stress_interface_0_below.npy"));
     assert_eq!(c.dim(), (11, 1, 32, 32));
     // sigma_z, tau_xz and tau_yz are continuous across the interface.
     for field in [2, 4, 5] {

@@ -442,12 +442,13 @@ impl Solution {
     /// sigma_z, tau_xy, tau_xz, tau_yz, s1, s2, s3, tau1, von_mises`, each of shape
     /// `(len(z), len(y), len(x))`, tension positive. `section` is `"xz"` (the plane
     /// `y`, at `depths`), `"surface"`, `"plane"` (depth `z`), `"block"` (every cell
-    /// centre at `depths`) or `"interface"` (a coated body's interface, `side` =
-    /// `"coating"` or `"substrate"`); `depths` a list or 1-D array. Refused with
+    /// centre at `depths`) or `"interface"` (interface number `interface` of a
+    /// layered body, 0 under the top layer, on `side` = `"above"` or `"below"`; for
+    /// a coating also `"coating"` or `"substrate"`); `depths` a list or 1-D array. Refused with
     /// `NotEnoughMemoryError` before it starts when the results (11 fields of 8 bytes
     /// per point) would not fit in the memory available. Runs without the GIL, a few
     /// depths at a time: Ctrl-C stops it and raises `KeyboardInterrupt`.
-    #[pyo3(signature = (section, *, y=0.0, z=0.0, depths=None, side="coating"))]
+    #[pyo3(signature = (section, *, y=0.0, z=0.0, depths=None, interface=0, side="above"))]
     fn stresses<'py>(
         &self,
         py: Python<'py>,
@@ -455,11 +456,12 @@ impl Solution {
         y: f64,
         z: f64,
         depths: Option<&Bound<'py, PyAny>>,
+        interface: usize,
         side: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
         let name = section;
         let depths = depths.map(stresses::depths_from).transpose()?;
-        let section = stresses::section(name, y, z, depths, side)?;
+        let section = stresses::section(name, y, z, depths, interface, side)?;
         let g = self.solution.grid;
         stresses::check_memory(
             py,
@@ -474,7 +476,7 @@ impl Solution {
 
     /// The stresses of the case's `[stress]` section, computed with the solve as
     /// `thirdbody solve` computes them: a dict from each section's name (`"xz"`,
-    /// `"surface"`, `"interface_coating"`, ... as in the CLI's file names) to a dict
+    /// `"surface"`, `"interface_0_above"`, ... as in the CLI's file names) to a dict
     /// as `stresses` returns. Their scalars are `summary["stress"]`. Raises
     /// `ValueError` when the case has no `[stress]` section or was solved with
     /// `stresses=False`.

@@ -43,6 +43,7 @@ pub fn section(
     y: f64,
     z: f64,
     depths: Option<Vec<f64>>,
+    interface: usize,
     side: &str,
 ) -> PyResult<Section> {
     let need_depths = |what: &str, depths: Option<Vec<f64>>| {
@@ -61,12 +62,14 @@ pub fn section(
             depths: need_depths("block", depths)?,
         },
         "interface" => Section::Interface {
+            index: interface,
             side: match side {
-                "coating" => Side::Coating,
-                "substrate" => Side::Substrate,
+                "above" | "coating" => Side::Above,
+                "below" | "substrate" => Side::Below,
                 other => {
                     return Err(PyValueError::new_err(format!(
-                        "side = {other:?} is not allowed: \"coating\" or \"substrate\""
+                        "side = {other:?} is not allowed: \"above\" or \"below\" (for a coating \
+                         also \"coating\" or \"substrate\")"
                     )))
                 }
             },
@@ -207,7 +210,7 @@ pub fn request_in_parts(
             Err(e) => return Some(Err(e)),
         }
     }
-    let summary = summarise(&sections);
+    let summary = summarise(&sections, &solution.body);
     Some(Ok(StressResults { sections, summary }))
 }
 

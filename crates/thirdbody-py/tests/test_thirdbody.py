@@ -182,8 +182,8 @@ def test_stresses_equal_the_cli_stress_files(tmp_path):
     depths = sorted(set(xz_csv[:, 2]))
     sections = {
         "stress_surface.npy": solution.stresses("surface"),
-        "stress_interface_coating.npy": solution.stresses("interface", side="coating"),
-        "stress_interface_substrate.npy": solution.stresses("interface", side="substrate"),
+        "stress_interface_0_above.npy": solution.stresses("interface", side="coating"),
+        "stress_interface_0_below.npy": solution.stresses("interface", interface=0, side="below"),
         "stress_xz.npy": solution.stresses("xz", y=float(xz_csv[0, 1]), depths=depths),
     }
     for name, got in sections.items():

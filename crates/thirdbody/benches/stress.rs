@@ -52,22 +52,23 @@ fn bench(c: &mut Criterion) {
     let depths: Vec<f64> = (0..128).map(|k| 2.0 * k as f64 / 127.0).collect();
     let xz = Section::XzPlane { y: 0.0, depths };
     for (name, h1) in [("thick", 0.5), ("thin", 0.025)] {
-        let coated = Body::Coated {
-            coating: Elastic {
+        let coated = Body::coated(
+            Elastic {
                 young: 3.0,
                 poisson: 0.3,
             },
-            thickness: h1,
-            substrate: Elastic {
+            h1,
+            Elastic {
                 young: 1.0,
                 poisson: 0.3,
             },
-        };
+        );
         group.bench_function(format!("coated_{name}_xz_256x128_from_256x256"), |b| {
             b.iter(|| black_box(stresses(&grid, &p, &coated, &xz).unwrap()))
         });
         let interface = Section::Interface {
-            side: thirdbody::stress::Side::Coating,
+            index: 0,
+            side: thirdbody::stress::Side::Above,
         };
         group.bench_function(format!("coated_{name}_interface_256x256"), |b| {
             b.iter(|| black_box(stresses(&grid, &p, &coated, &interface).unwrap()))

@@ -300,7 +300,7 @@ fn main() -> Result<()> {
                     integration: name,
                     label,
                     solution,
-                    body: c.body,
+                    body: c.body.clone(),
                 };
                 report(&row, &mut results)?;
                 if cells == 128 && name == "exact" {

@@ -3,6 +3,7 @@
 //! paper's section 4, or SI). [`Case::validate`] checks every field against its
 //! physical range and names the field in the error; the solver assumes a valid case.
 
+use crate::body::layered::{Base, Ply, Stack};
 use crate::error::{require_poisson, require_positive, Error, Result};
 use crate::layer::Layer;
 use crate::provenance::{self, Reference};
@@ -24,50 +25,95 @@ impl Elastic {
         self.young / (1.0 - self.poisson * self.poisson)
     }
 
+    /// The material with its moduli divided by `modulus`.
+    pub fn scaled(&self, modulus: f64) -> Elastic {
+        Elastic {
+            young: self.young / modulus,
+            poisson: self.poisson,
+        }
+    }
+
     pub(crate) fn validate(&self, section: &str) -> Result<()> {
         require_positive(&format!("{section}.young"), self.young)?;
         require_poisson(&format!("{section}.poisson"), self.poisson)
     }
 }
 
-/// The elastic body under the layer (paper Fig. 1).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The elastic body under the layer (paper Fig. 1). Plain data; [`Body::model`]
+/// picks the implementation (`docs/architecture.md`, "Adding an elastic body").
+#[derive(Debug, Clone, PartialEq)]
 pub enum Body {
     /// A homogeneous half-space (paper eq. 9).
     Homogeneous(Elastic),
-    /// A coating of thickness `thickness` perfectly bonded to a substrate
-    /// (paper eq. 5 and 10).
-    Coated {
-        /// The coating (E1, nu1).
-        coating: Elastic,
-        /// Coating thickness h1.
-        thickness: f64,
-        /// The substrate half-space (E2, nu2).
-        substrate: Elastic,
-    },
+    /// Bonded elastic layers on a half-space or a rigid base
+    /// ([`crate::body::layered`]); a coating (paper eq. 5 and 10) is a stack of one
+    /// layer on a half-space ([`Body::coated`]).
+    Layered(Stack),
 }
 
 impl Body {
-    /// The half-space under everything (E2, nu2), which sets the stress scale.
-    pub fn substrate(&self) -> Elastic {
-        match *self {
-            Body::Homogeneous(m) => m,
-            Body::Coated { substrate, .. } => substrate,
+    /// A coating of thickness `thickness` perfectly bonded to a substrate half-space
+    /// (paper eq. 5 and 10): a stack of one layer.
+    pub fn coated(coating: Elastic, thickness: f64, substrate: Elastic) -> Body {
+        Body::Layered(Stack {
+            layers: vec![Ply {
+                material: coating,
+                thickness,
+            }],
+            base: Base::HalfSpace(substrate),
+        })
+    }
+
+    /// The elastic half-space under everything, if any (E2, nu2 of the paper).
+    pub fn half_space(&self) -> Option<Elastic> {
+        match self {
+            Body::Homogeneous(m) => Some(*m),
+            Body::Layered(stack) => match stack.base {
+                Base::HalfSpace(m) => Some(m),
+                Base::Rigid(_) => None,
+            },
+        }
+    }
+
+    /// The modulus that sets the solver's stress unit: the half-space's Young's
+    /// modulus (the paper's E2), or on a rigid base the stiffest layer's.
+    pub fn reference_modulus(&self) -> f64 {
+        match self {
+            Body::Homogeneous(m) => m.young,
+            Body::Layered(stack) => stack.reference_modulus(),
+        }
+    }
+
+    /// The same body with lengths divided by `length` and moduli by `modulus` (the
+    /// solver's units, `units.rs`).
+    pub fn scaled(&self, length: f64, modulus: f64) -> Body {
+        match self {
+            Body::Homogeneous(m) => Body::Homogeneous(m.scaled(modulus)),
+            Body::Layered(stack) => Body::Layered(stack.scaled(length, modulus)),
+        }
+    }
+
+    /// The coating of a one-layer stack on a half-space: `(coating, thickness,
+    /// substrate)`; `None` for any other body.
+    pub fn as_coating(&self) -> Option<(Elastic, f64, Elastic)> {
+        match self {
+            Body::Layered(Stack {
+                layers,
+                base: Base::HalfSpace(substrate),
+            }) if layers.len() == 1 => Some((layers[0].material, layers[0].thickness, *substrate)),
+            _ => None,
         }
     }
 
     pub(crate) fn validate(&self) -> Result<()> {
         match self {
             Body::Homogeneous(m) => m.validate("substrate"),
-            Body::Coated {
-                coating,
-                thickness,
-                substrate,
-            } => {
-                substrate.validate("substrate")?;
-                coating.validate("coating")?;
-                require_positive("coating.thickness", *thickness)
-            }
+            Body::Layered(stack) if stack.layers.is_empty() => Err(Error::invalid(
+                "body.layers",
+                "[]",
+                "at least one layer (a half-space alone is a [substrate] without layers)",
+            )),
+            Body::Layered(stack) => stack.validate(),
         }
     }
 }

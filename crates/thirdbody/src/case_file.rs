@@ -14,9 +14,10 @@
 use serde::de::{self, DeserializeSeed, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
 
+use crate::body::layered::{Base, BaseContact, Ply, Stack};
 use crate::case::{Body, Case, Elastic, GridSpec, Loading, Units};
 use crate::contact::SolverParams;
-use crate::error::{Error, Result};
+use crate::error::{require_positive, Error, Result};
 use crate::layer::rheology::{preset_keys, KeyKind, KeyReader, KeyValue, Preset, PRESETS};
 use crate::layer::{ComplianceLaw, Integration, Layer, Rheology, Table};
 use crate::shape::{HeightMap, Slider};
@@ -48,6 +49,7 @@ struct RawCase {
     slider: Option<RawSlider>,
     substrate: Option<RawElastic>,
     coating: Option<RawCoating>,
+    body: Option<RawBody>,
     layer: Option<RawLayer>,
     loading: Option<RawLoading>,
     grid: Option<RawGrid>,
@@ -94,6 +96,30 @@ struct RawCoating {
     young: Option<f64>,
     poisson: Option<f64>,
     thickness: Option<f64>,
+}
+
+/// `[body]` with `[[body.layers]]`: a stack of layers on a half-space (the
+/// `[substrate]`) or on a rigid base.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBody {
+    base: Option<RawBase>,
+    bonding: Option<RawBonding>,
+    layers: Option<Vec<RawCoating>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum RawBase {
+    HalfSpace,
+    Rigid,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum RawBonding {
+    Bonded,
+    Frictionless,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -347,27 +373,9 @@ pub fn parse_case_file(
 ) -> Result<CaseFile> {
     let raw: RawCase = toml::from_str(text).map_err(|e| toml_error(text, &e))?;
     let slider = section(raw.slider, "slider", "shape = \"sphere\" and radius (> 0)")?;
-    let substrate = section(
-        raw.substrate,
-        "substrate",
-        "young (> 0) and poisson (-1 < poisson < 0.5)",
-    )?;
+    let body = body(raw.substrate, raw.coating, raw.body)?;
     let loading = section(raw.loading, "loading", "normal_load (> 0)")?;
     let grid = section(raw.grid, "grid", "cells = [nx, ny], each >= 8")?;
-
-    let substrate = elastic(substrate.young, substrate.poisson, "substrate")?;
-    let body = match raw.coating {
-        None => Body::Homogeneous(substrate),
-        Some(c) => Body::Coated {
-            coating: elastic(c.young, c.poisson, "coating")?,
-            thickness: need(
-                c.thickness,
-                "coating.thickness",
-                "a [coating] needs its thickness (> 0)",
-            )?,
-            substrate,
-        },
-    };
     let layer = raw.layer.map(layer).transpose()?;
     let loading = Loading {
         normal_load: need(
@@ -471,6 +479,102 @@ fn unused(present: bool, field: &str, why: &str) -> Result<()> {
     } else {
         Ok(())
     }
+}
+
+/// The body from `[substrate]`, `[coating]` (one layer on the substrate) or `[body]`
+/// with `[[body.layers]]` (docs/case-file.md, "The body").
+fn body(
+    substrate: Option<RawElastic>,
+    coating: Option<RawCoating>,
+    raw: Option<RawBody>,
+) -> Result<Body> {
+    let rigid = matches!(
+        raw.as_ref().and_then(|b| b.base.as_ref()),
+        Some(RawBase::Rigid)
+    );
+    let substrate = if rigid {
+        unused(
+            substrate.is_some(),
+            "substrate",
+            "a rigid base (body.base = \"rigid\") has no substrate material",
+        )?;
+        None
+    } else {
+        let s = section(
+            substrate,
+            "substrate",
+            "young (> 0) and poisson (-1 < poisson < 0.5)",
+        )?;
+        let m = elastic(s.young, s.poisson, "substrate")?;
+        m.validate("substrate")?;
+        Some(m)
+    };
+    // Each layer checked under the name it was written with (`coating.thickness`,
+    // `body.layers[2].young`).
+    let ply = |c: RawCoating, name: &str| -> Result<Ply> {
+        let ply = Ply {
+            material: elastic(c.young, c.poisson, name)?,
+            thickness: need(
+                c.thickness,
+                &format!("{name}.thickness"),
+                "every layer needs its thickness (> 0)",
+            )?,
+        };
+        ply.material.validate(name)?;
+        require_positive(&format!("{name}.thickness"), ply.thickness)?;
+        Ok(ply)
+    };
+    let Some(raw) = raw else {
+        let substrate = substrate.expect("a half-space base");
+        return Ok(match coating {
+            None => Body::Homogeneous(substrate),
+            Some(c) => Body::Layered(Stack {
+                layers: vec![ply(c, "coating")?],
+                base: Base::HalfSpace(substrate),
+            }),
+        });
+    };
+    unused(
+        coating.is_some(),
+        "coating",
+        "a [coating] is one layer of [[body.layers]]: give either, not both",
+    )?;
+    let base =
+        match (substrate, raw.bonding) {
+            (Some(m), None) => Base::HalfSpace(m),
+            (Some(_), Some(_)) => return Err(Error::UnusedField {
+                field: "body.bonding".into(),
+                why: "the bonding names how layers rest on a rigid base (body.base = \"rigid\"); \
+                      on the [substrate] half-space they are bonded"
+                    .into(),
+            }),
+            (None, bonding) => Base::Rigid(
+                match need(
+                    bonding,
+                    "body.bonding",
+                    "a rigid base needs its bonding: \"bonded\" or \"frictionless\"",
+                )? {
+                    RawBonding::Bonded => BaseContact::Bonded,
+                    RawBonding::Frictionless => BaseContact::Frictionless,
+                },
+            ),
+        };
+    let layers = raw
+        .layers
+        .unwrap_or_default()
+        .into_iter()
+        .enumerate()
+        .map(|(i, c)| ply(c, &format!("body.layers[{i}]")))
+        .collect::<Result<Vec<_>>>()?;
+    if layers.is_empty() {
+        return Err(Error::MissingField {
+            field: "body.layers".into(),
+            why: "a [body] needs at least one [[body.layers]] entry (young, poisson, thickness), \
+                  listed from the surface down"
+                .into(),
+        });
+    }
+    Ok(Body::Layered(Stack { layers, base }))
 }
 
 fn elastic(young: Option<f64>, poisson: Option<f64>, section: &str) -> Result<Elastic> {

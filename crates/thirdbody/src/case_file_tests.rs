@@ -127,7 +127,7 @@ fn no_layer_needs_no_velocity_and_accepts_integers_for_reals() {
     let file = parse(&text).unwrap();
     assert!(file.case.layer.is_none());
     assert_eq!(file.case.loading.velocity, None);
-    assert_eq!(file.case.body.substrate().young, 2.0);
+    assert_eq!(file.case.body.half_space().unwrap().young, 2.0);
 }
 
 #[test]
@@ -211,17 +211,17 @@ max_windows = 2
     );
     assert_eq!(
         c.body,
-        Body::Coated {
-            coating: Elastic {
+        Body::coated(
+            Elastic {
                 young: 70e9,
                 poisson: 0.25
             },
-            thickness: 1e-5,
-            substrate: Elastic {
+            1e-5,
+            Elastic {
                 young: 210e9,
                 poisson: 0.3
             },
-        }
+        )
     );
     assert_eq!(c.grid.half_width, Some([2e-4, 1e-4]));
     assert_eq!(c.grid.centre, Some([1e-5, 0.0]));

@@ -125,7 +125,7 @@ impl KernelCache {
         plan: &Arc<ConvolutionPlan>,
     ) -> Result<Arc<KernelSpectrum>> {
         let key = SpectrumKey {
-            body: *body,
+            body: body.clone(),
             cells: [grid.nx, grid.ny],
             cell_bits: grid.cell.to_bits(),
         };
@@ -169,17 +169,17 @@ mod tests {
     use crate::case::Elastic;
 
     fn coated(thickness: f64) -> Body {
-        Body::Coated {
-            coating: Elastic {
+        Body::coated(
+            Elastic {
                 young: 3.0,
                 poisson: 0.3,
             },
             thickness,
-            substrate: Elastic {
+            Elastic {
                 young: 1.0,
                 poisson: 0.3,
             },
-        }
+        )
     }
 
     #[test]

@@ -63,7 +63,7 @@ impl Case {
         let velocity = self.velocity();
         Ok(ContactProblem {
             grid: *grid,
-            body: self.body,
+            body: self.body.clone(),
             influence: Box::new(influence),
             layer: self
                 .layer
@@ -102,7 +102,7 @@ impl ContactProblem {
         }
         Ok(ContactProblem {
             grid: *grid,
-            body: case.body,
+            body: case.body.clone(),
             influence,
             layer: case
                 .layer

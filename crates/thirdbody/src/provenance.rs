@@ -144,6 +144,16 @@ pub const REFERENCES: &str = r#"@article{torskaya2023nonlinear,
   publisher = {Wiley},
   year      = {1960}
 }
+
+@article{kausel1981stiffness,
+  author  = {Kausel, Eduardo and Ro{\"e}sset, Jos{\'e} M.},
+  title   = {Stiffness matrices for layered soils},
+  journal = {Bulletin of the Seismological Society of America},
+  volume  = {71},
+  number  = {6},
+  pages   = {1743--1761},
+  year    = {1981}
+}
 "#;
 
 /// A published work: its BibTeX key in [`REFERENCES`] and a short citation.
@@ -237,8 +247,14 @@ pub const TOBOLSKY: Work = Work {
     citation: "A. V. Tobolsky, Properties and Structure of Polymers, Wiley 1960",
 };
 
+/// Stiffness matrices of elastic layers.
+pub const KAUSEL_ROESSET: Work = Work {
+    key: "kausel1981stiffness",
+    citation: "E. Kausel & J. M. Roësset, Bull. Seismol. Soc. Am. 71 (1981) 1743-1761",
+};
+
 /// Every work in [`REFERENCES`], in its order.
-pub const WORKS: [Work; 13] = [
+pub const WORKS: [Work; 14] = [
     PAPER,
     LOVE,
     DC_FFT,
@@ -252,6 +268,7 @@ pub const WORKS: [Work; 13] = [
     MAINARDI,
     TREFETHEN_WEIDEMAN,
     TOBOLSKY,
+    KAUSEL_ROESSET,
 ];
 
 /// A work one computation relies on, and what for.

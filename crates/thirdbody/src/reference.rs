@@ -155,7 +155,7 @@ fn solve_dense_with(
                 .map_or(0.0, |l| l.response.dissipated_force(&p));
             return Ok(Solution {
                 grid: *grid,
-                body: problem.body,
+                body: problem.body.clone(),
                 pressure: p,
                 contact_edges: entries,
                 body_displacement: wb,

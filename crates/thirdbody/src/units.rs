@@ -14,7 +14,7 @@
 //! ([`crate::layer::RheologyModel::time_scale`]: the Maxwell T, a retardation time),
 //! 1 without a layer.
 
-use crate::case::{Body, Case, Elastic};
+use crate::case::{Body, Case};
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::layer::{ComplianceLaw, Layer, SolverUnits};
@@ -65,19 +65,19 @@ impl Scales {
         let time = (case.layer.as_ref()).map_or(1.0, |layer| layer.rheology.time_scale());
         Scales {
             length: power_of_two_near(length),
-            modulus: power_of_two_near(case.body.substrate().young),
+            modulus: power_of_two_near(case.body.reference_modulus()),
             time: power_of_two_near(time),
         }
     }
 
     /// The units of a stress computation on `body` under a pressure on `grid`: the
-    /// window's size, the substrate's modulus (no time), as powers of two. Love's
+    /// window's size, the body's reference modulus (no time), as powers of two. Love's
     /// and the coated kernels raise lengths to the fourth power: in 1e-100 units
     /// they would underflow.
     pub fn for_stresses(body: &Body, grid: &Grid) -> Scales {
         Scales {
             length: power_of_two_near(grid.cell * grid.nx.max(grid.ny) as f64),
-            modulus: power_of_two_near(body.substrate().young),
+            modulus: power_of_two_near(body.reference_modulus()),
             time: 1.0,
         }
     }
@@ -113,27 +113,9 @@ impl Scales {
         q / self.modulus / self.length / self.length
     }
 
-    fn elastic(&self, m: Elastic) -> Elastic {
-        Elastic {
-            young: self.pressure(m.young),
-            poisson: m.poisson,
-        }
-    }
-
     /// A body in these units.
     pub fn body(&self, body: &Body) -> Body {
-        match *body {
-            Body::Homogeneous(m) => Body::Homogeneous(self.elastic(m)),
-            Body::Coated {
-                coating,
-                thickness,
-                substrate,
-            } => Body::Coated {
-                coating: self.elastic(coating),
-                thickness: self.length(thickness),
-                substrate: self.elastic(substrate),
-            },
-        }
+        body.scaled(self.length, self.modulus)
     }
 
     fn slider(&self, slider: &Slider) -> Slider {

@@ -10,17 +10,17 @@ use thirdbody::*;
 
 fn coated(case: Case, thickness: f64) -> Case {
     Case {
-        body: Body::Coated {
-            coating: Elastic {
+        body: Body::coated(
+            Elastic {
                 young: 3.0,
                 poisson: 0.3,
             },
             thickness,
-            substrate: Elastic {
+            Elastic {
                 young: 1.0,
                 poisson: 0.3,
             },
-        },
+        ),
         ..case
     }
 }

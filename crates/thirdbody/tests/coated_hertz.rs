@@ -58,11 +58,7 @@ fn check(coating: Elastic, thickness: f64, substrate: Elastic, limit: Elastic, w
     let h = hertz(load, limit);
     let (half_width, cells) = (1.3 * h.radius, 64);
     let coated = solve_on(
-        Body::Coated {
-            coating,
-            thickness,
-            substrate,
-        },
+        Body::coated(coating, thickness, substrate),
         load,
         half_width,
         cells,

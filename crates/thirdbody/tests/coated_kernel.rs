@@ -6,9 +6,12 @@
 
 use std::f64::consts::PI;
 
-use thirdbody::body::coated::{coated_surface_kernel, coating_factor};
 use thirdbody::body::homogeneous::love_rectangle_displacement;
 use thirdbody::{Elastic, Error};
+
+mod coated_tables;
+#[allow(unused_imports)]
+use coated_tables::*;
 
 fn elastic(young: f64, poisson: f64) -> Elastic {
     Elastic { young, poisson }
@@ -229,8 +232,9 @@ fn burmister_two_layer_deflection_factor() {
     // and Design, 2nd ed., Fig. 2.19: F2 = 0.511 for E1/E2 = 5, h1/a = 1.333, read
     // from the chart). In Fourier space w = int_0^inf W(k) q a J1(k a) dk, so
     // F2 = (E2/E1) int_0^inf A(x h1/a) J1(x) / x dx = (E2/E1)(1 + int f J1 / x).
-    let coating = elastic(5.0, 0.5);
-    let substrate = elastic(1.0, 0.5);
+    // nu -> 0.5 (the library's range ends just below it).
+    let coating = elastic(5.0, 0.4999999);
+    let substrate = elastic(1.0, 0.4999999);
     let thickness_ratio = 1.333;
     let (x_max, steps) = (30.0, 30_000);
     let dx = x_max / steps as f64;
@@ -271,18 +275,18 @@ fn bad_input_names_the_field() {
     for h in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let e = coated_surface_kernel(c, h, s, 1.0, 8, 8).unwrap_err();
         assert!(e.to_string().contains("> 0"), "{e}");
-        assert_eq!(field_of(e), "coating.thickness");
+        assert_eq!(field_of(e), "body.layers[0].thickness");
     }
     for nu in [0.5, 0.7, -1.0, f64::NAN] {
         let e = coated_surface_kernel(elastic(3.0, nu), 0.1, s, 1.0, 8, 8).unwrap_err();
         assert!(e.to_string().contains("poisson < 0.5"), "{e}");
-        assert_eq!(field_of(e), "coating.poisson");
+        assert_eq!(field_of(e), "body.layers[0].poisson");
     }
     for young in [0.0, -2.0, f64::NAN] {
         let e = coated_surface_kernel(elastic(young, 0.3), 0.1, s, 1.0, 8, 8).unwrap_err();
-        assert_eq!(field_of(e), "coating.young");
+        assert_eq!(field_of(e), "body.layers[0].young");
         let e = coated_surface_kernel(c, 0.1, elastic(young, 0.3), 1.0, 8, 8).unwrap_err();
-        assert_eq!(field_of(e), "substrate.young");
+        assert_eq!(field_of(e), "body.base.young");
     }
     let e = coated_surface_kernel(c, 0.1, s, 0.0, 8, 8).unwrap_err();
     assert_eq!(field_of(e), "grid.cell");
@@ -293,11 +297,7 @@ fn case_with_a_bad_coating_is_rejected_with_the_field_named() {
     use thirdbody::{Body, Case, GridSpec, Loading, Slider, Units};
     let case = |coating: Elastic, thickness: f64| Case {
         slider: Slider::Sphere { radius: 1.0 },
-        body: Body::Coated {
-            coating,
-            thickness,
-            substrate: elastic(1.0, 0.3),
-        },
+        body: Body::coated(coating, thickness, elastic(1.0, 0.3)),
         layer: None,
         loading: Loading {
             normal_load: 1e-5,
@@ -312,11 +312,11 @@ fn case_with_a_bad_coating_is_rejected_with_the_field_named() {
     };
     assert!(case(elastic(3.0, 0.3), 0.01).validate().is_ok());
     for (coating, thickness, field) in [
-        (elastic(3.0, 0.3), 0.0, "coating.thickness"),
-        (elastic(3.0, 0.3), -0.01, "coating.thickness"),
-        (elastic(3.0, 0.5), 0.01, "coating.poisson"),
-        (elastic(0.0, 0.3), 0.01, "coating.young"),
-        (elastic(-1.0, 0.3), 0.01, "coating.young"),
+        (elastic(3.0, 0.3), 0.0, "body.layers[0].thickness"),
+        (elastic(3.0, 0.3), -0.01, "body.layers[0].thickness"),
+        (elastic(3.0, 0.5), 0.01, "body.layers[0].poisson"),
+        (elastic(0.0, 0.3), 0.01, "body.layers[0].young"),
+        (elastic(-1.0, 0.3), 0.01, "body.layers[0].young"),
     ] {
         let e = case(coating, thickness).validate().unwrap_err();
         let message = e.to_string();
@@ -335,11 +335,7 @@ fn coated_body_goes_through_the_dc_fft_operator() {
     let (nx, ny, cell) = (12, 10, 0.5);
     let grid = Grid::centred(nx, ny, cell, [0.0, 0.0]).unwrap();
     let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
-    let body = Body::Coated {
-        coating,
-        thickness,
-        substrate,
-    };
+    let body = Body::coated(coating, thickness, substrate);
     // The kernel as the cache keeps it (its quadrant); the operator builds its
     // spectrum on the plan's padding.
     let spectrum = surface_kernel(&body, &grid, &plan).unwrap();
@@ -381,7 +377,10 @@ fn thin_coating_far_field_matches_the_multipole_tail() {
     let sub = homogeneous_kernel(substrate, cell, n, n);
     let d = 1e-3;
     let f = |t: f64| coating_factor(coating, substrate, t);
-    let f2 = (f(d) + f(-d) - 2.0 * f(0.0)) / (2.0 * d * d);
+    // The t^2 coefficient of A from forward differences (A is taken at t > 0 only),
+    // Richardson-extrapolated: g(d) = a2 + 6 a3 d + O(d^2).
+    let g = |d: f64| (f(3.0 * d) - 2.0 * f(2.0 * d) + f(d)) / (2.0 * d * d);
+    let f2 = 2.0 * g(0.5 * d) - g(d);
     let c = 2.0 * (1.0 - 0.09) / 3.0;
     for (di, dj) in [(40usize, 25usize), (63, 0), (30, 30), (20, 10)] {
         let r = ((di * di + dj * dj) as f64).sqrt() * cell;
@@ -424,20 +423,4 @@ fn elongated_grids_give_the_same_kernel_and_symmetry_holds() {
             assert!((square[di * 20 + dj] - v).abs() < 1e-12 * square[0]);
         }
     }
-}
-
-#[test]
-fn extremely_thin_and_stiff_coating_is_refused_not_stalled() {
-    // E1/E2 = 1e4 with h1 = 1e-4 cell on a 32 x 32 window: the radial integral
-    // would be needed to R/h1 ~ 5e5; the error names the thickness and the limit.
-    let (c, s) = (elastic(1e4, 0.2), elastic(1.0, 0.3));
-    let e = coated_surface_kernel(c, 1e-4, s, 1.0, 32, 32).unwrap_err();
-    let message = e.to_string();
-    eprintln!("{message}");
-    assert_eq!(field_of(e), "coating.thickness");
-    assert!(message.contains("at least"), "{message}");
-    // A thickness above the stated minimum works.
-    let t = std::time::Instant::now();
-    assert!(coated_surface_kernel(c, 5e-2, s, 1.0, 32, 32).is_ok());
-    eprintln!("h1 = 5e-2: {:.2} s", t.elapsed().as_secs_f64());
 }

@@ -5,11 +5,12 @@
 
 use std::f64::consts::PI;
 
-use thirdbody::body::coated_stress::{coated_stress_transfer, interface_stress_transfer};
-use thirdbody::stress::{
-    stresses, CoatedStressKernels, InfluenceTable, OffsetLattice, Section, Side, StressKernels,
-};
+use thirdbody::stress::{stresses, InfluenceTable, OffsetLattice, Section, Side, StressKernels};
 use thirdbody::{Body, Elastic, Grid};
+
+mod coated_tables;
+#[allow(unused_imports)]
+use coated_tables::*;
 
 fn elastic(young: f64, poisson: f64) -> Elastic {
     Elastic { young, poisson }
@@ -56,7 +57,7 @@ fn direct_cell_stresses(
                 let (kx, ky) = (k * phi.cos(), k * phi.sin());
                 let t = if (z - h1).abs() < 1e-15 {
                     let (c, s) = interface_stress_transfer(coating, h1, substrate, kx, ky);
-                    if side == Side::Coating {
+                    if side == Side::Above {
                         c
                     } else {
                         s
@@ -114,17 +115,12 @@ fn one_cell_kernel_matches_direct_fourier_quadrature() {
     ];
     for (coating, h1, substrate) in cases {
         for (z, side) in [
-            (0.3 * h1, Side::Coating),
-            (h1, Side::Coating),
-            (h1, Side::Substrate),
-            (1.7 * h1, Side::Substrate),
+            (0.3 * h1, Side::Above),
+            (h1, Side::Above),
+            (h1, Side::Below),
+            (1.7 * h1, Side::Below),
         ] {
-            let kernels = CoatedStressKernels {
-                coating,
-                thickness: h1,
-                substrate,
-                interface_side: side,
-            };
+            let kernels = coated_kernels(coating, h1, substrate, side);
             let lattice = OffsetLattice {
                 cell: h,
                 x_first: -15.0,
@@ -168,11 +164,7 @@ fn equal_materials_give_the_homogeneous_stresses() {
     let grid = Grid::centred(40, 40, 0.05, [0.0, 0.0]).unwrap();
     let p = hertz_pressure(&grid, 0.6);
     let homogeneous = Body::Homogeneous(m);
-    let coated = Body::Coated {
-        coating: m,
-        thickness: 0.12,
-        substrate: m,
-    };
+    let coated = Body::coated(m, 0.12, m);
     let depths: Vec<f64> = (0..12).map(|k| 0.05 * k as f64).chain([0.12]).collect();
     for section in [
         Section::XzPlane {
@@ -220,17 +212,14 @@ fn interface_tractions_and_in_plane_strains_are_continuous() {
         (elastic(3.0, 0.3), 0.1, elastic(1.0, 0.3)),
         (elastic(0.3, 0.4), 0.25, elastic(1.0, 0.2)),
     ] {
-        let body = Body::Coated {
-            coating,
-            thickness: h1,
-            substrate,
-        };
+        let body = Body::coated(coating, h1, substrate);
         let top = stresses(
             &grid,
             &p,
             &body,
             &Section::Interface {
-                side: Side::Coating,
+                index: 0,
+                side: Side::Above,
             },
         )
         .unwrap();
@@ -239,7 +228,8 @@ fn interface_tractions_and_in_plane_strains_are_continuous() {
             &p,
             &body,
             &Section::Interface {
-                side: Side::Substrate,
+                index: 0,
+                side: Side::Below,
             },
         )
         .unwrap();
@@ -305,11 +295,7 @@ fn thin_and_thick_coatings_tend_to_the_homogeneous_bodies() {
     let alone = stresses(&grid, &p, &Body::Homogeneous(coating), &shallow).unwrap();
     let mut thick = Vec::new();
     for h1 in [5.0, 10.0] {
-        let body = Body::Coated {
-            coating,
-            thickness: h1,
-            substrate,
-        };
+        let body = Body::coated(coating, h1, substrate);
         thick.push(max_difference(
             &stresses(&grid, &p, &body, &shallow).unwrap(),
             &alone,
@@ -326,11 +312,7 @@ fn thin_and_thick_coatings_tend_to_the_homogeneous_bodies() {
     let below = stresses(&grid, &p, &Body::Homogeneous(substrate), &deep).unwrap();
     let mut thin = Vec::new();
     for h1 in [0.02, 0.01, 0.005, 0.0025] {
-        let body = Body::Coated {
-            coating,
-            thickness: h1,
-            substrate,
-        };
+        let body = Body::coated(coating, h1, substrate);
         thin.push(max_difference(
             &stresses(&grid, &p, &body, &deep).unwrap(),
             &below,

@@ -4,15 +4,15 @@
 //! the full expansion on both sides of each switch, and against the independent
 //! limits (Love's kernels of the substrate as h1 -> 0, of the coating as h1 -> inf).
 
-use thirdbody::body::coated_stress::StressMethod;
+use thirdbody::stress::StressMethod;
 use thirdbody::stress::{
-    CoatedStressKernels, HomogeneousStressKernels, InfluenceTable, OffsetLattice, Side,
+    HomogeneousStressKernels, InfluenceTable, LayeredStressKernels, OffsetLattice, Side,
     StressKernels,
 };
 
 mod coated_tables;
 
-use coated_tables::{elastic, max_difference, peak, square_lattice, table};
+use coated_tables::*;
 
 /// A centred lattice of `n x n` offsets, cell 1.
 fn lattice(n: usize) -> OffsetLattice {
@@ -36,25 +36,20 @@ fn thin_film_error_survey() {
             1.0 / 1024.0,
             1.0 / 4096.0,
         ] {
-            let k = CoatedStressKernels {
-                coating: elastic(ratio, 0.3),
-                thickness: h1,
-                substrate: elastic(1.0, 0.3),
-                interface_side: Side::Coating,
-            };
+            let k = coated_kernels(elastic(ratio, 0.3), h1, elastic(1.0, 0.3), Side::Above);
             let chosen = k.method(&l);
             let mut worst = 0.0f64;
             for (z, side) in [
-                (0.0, Side::Coating),
-                (0.5 * h1, Side::Coating),
-                (h1, Side::Coating),
-                (h1, Side::Substrate),
-                (2.0 * h1, Side::Substrate),
-                (1.0, Side::Substrate),
+                (0.0, Side::Above),
+                (0.5 * h1, Side::Above),
+                (h1, Side::Above),
+                (h1, Side::Below),
+                (2.0 * h1, Side::Below),
+                (1.0, Side::Below),
             ] {
-                let k = CoatedStressKernels {
+                let k = LayeredStressKernels {
                     interface_side: side,
-                    ..k
+                    ..k.clone()
                 };
                 let sub = table(&k, z, &l, StressMethod::SubCell);
                 let thin = table(&k, z, &l, StressMethod::ThinFilm);
@@ -76,17 +71,12 @@ fn thin_film_switch_is_continuous() {
     let l = lattice(9);
     for h1 in [1.0 / 2048.0, 1.0 / 4096.0, 1.0 / 8192.0] {
         for (z, side) in [
-            (0.0, Side::Coating),
-            (h1, Side::Coating),
-            (h1, Side::Substrate),
-            (0.5, Side::Substrate),
+            (0.0, Side::Above),
+            (h1, Side::Above),
+            (h1, Side::Below),
+            (0.5, Side::Below),
         ] {
-            let k = CoatedStressKernels {
-                coating: elastic(3.0, 0.3),
-                thickness: h1,
-                substrate: elastic(1.0, 0.3),
-                interface_side: side,
-            };
+            let k = coated_kernels(elastic(3.0, 0.3), h1, elastic(1.0, 0.3), side);
             let sub = table(&k, z, &l, StressMethod::SubCell);
             let thin = table(&k, z, &l, StressMethod::ThinFilm);
             let e = difference(&sub, &thin, peak(&sub));
@@ -109,12 +99,7 @@ fn thin_film_tends_to_the_substrate_half_space() {
     let l = lattice(9);
     let (e1, e2) = (elastic(3.0, 0.25), elastic(1.0, 0.35));
     for h1 in [1e-8, 1e-12] {
-        let k = CoatedStressKernels {
-            coating: e1,
-            thickness: h1,
-            substrate: e2,
-            interface_side: Side::Substrate,
-        };
+        let k = coated_kernels(e1, h1, e2, Side::Below);
         assert_eq!(k.method(&l), StressMethod::ThinFilm);
         let love = |z: f64| {
             let mut t = InfluenceTable::default();
@@ -169,18 +154,13 @@ fn thick_coating_switch_is_continuous_and_tends_to_the_coating_half_space() {
     for s in [1e-3, 2e-4, 5e-5] {
         let h1 = diagonal / s;
         for (z, side) in [
-            (0.0, Side::Coating),
-            (0.7, Side::Coating),
-            (3.0, Side::Coating),
-            (h1, Side::Coating),
-            (h1, Side::Substrate),
+            (0.0, Side::Above),
+            (0.7, Side::Above),
+            (3.0, Side::Above),
+            (h1, Side::Above),
+            (h1, Side::Below),
         ] {
-            let k = CoatedStressKernels {
-                coating: e1,
-                thickness: h1,
-                substrate: e2,
-                interface_side: side,
-            };
+            let k = coated_kernels(e1, h1, e2, side);
             let full = table(&k, z, &l, StressMethod::Full);
             let thick = table(&k, z, &l, StressMethod::ThickCoating);
             let e = difference(&full, &thick, peak(&full));
@@ -215,17 +195,12 @@ fn extreme_thicknesses_are_finite() {
     let l = lattice(33);
     for h1 in [1e-12, 1e-8, 1e6, 1e100] {
         for (z, side) in [
-            (0.0, Side::Coating),
-            (h1, Side::Coating),
-            (h1, Side::Substrate),
-            (2.0, Side::Substrate),
+            (0.0, Side::Above),
+            (h1, Side::Above),
+            (h1, Side::Below),
+            (2.0, Side::Below),
         ] {
-            let k = CoatedStressKernels {
-                coating: elastic(3.0, 0.3),
-                thickness: h1,
-                substrate: elastic(1.0, 0.3),
-                interface_side: side,
-            };
+            let k = coated_kernels(elastic(3.0, 0.3), h1, elastic(1.0, 0.3), side);
             let mut t = InfluenceTable::default();
             k.fill(z, &l, &mut t);
             assert!(

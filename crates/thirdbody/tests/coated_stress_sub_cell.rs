@@ -5,41 +5,36 @@
 
 use std::time::Instant;
 
-use thirdbody::body::coated_stress::StressMethod;
-use thirdbody::stress::{CoatedStressKernels, InfluenceTable, OffsetLattice, Side};
+use thirdbody::stress::StressMethod;
+use thirdbody::stress::{InfluenceTable, LayeredStressKernels, OffsetLattice, Side};
 
 mod coated_tables;
 
 use coated_tables::{
-    elastic, max_difference as difference, peak, square_lattice as lattice, table,
+    coated_kernels, elastic, max_difference as difference, peak, square_lattice as lattice, table,
 };
 
 /// A coating `h1` thick of E1/E2 = `ratio` (nu 0.3) on a substrate of nu 0.25, the
 /// interface read on `side`.
-fn kernels(ratio: f64, h1: f64, side: Side) -> CoatedStressKernels {
-    CoatedStressKernels {
-        coating: elastic(ratio, 0.3),
-        thickness: h1,
-        substrate: elastic(1.0, 0.25),
-        interface_side: side,
-    }
+fn kernels(ratio: f64, h1: f64, side: Side) -> LayeredStressKernels {
+    coated_kernels(elastic(ratio, 0.3), h1, elastic(1.0, 0.25), side)
 }
 
 fn depths(h1: f64) -> [(f64, Side); 6] {
     [
-        (0.0, Side::Coating),
-        (0.5 * h1, Side::Coating),
-        (h1, Side::Coating),
-        (h1, Side::Substrate),
-        (3.0 * h1, Side::Substrate),
-        (0.5, Side::Substrate),
+        (0.0, Side::Above),
+        (0.5 * h1, Side::Above),
+        (h1, Side::Above),
+        (h1, Side::Below),
+        (3.0 * h1, Side::Below),
+        (0.5, Side::Below),
     ]
 }
 
 /// The full expansion's and the sub-cell split's tables of `k` at `z` on `l`, and
 /// the seconds each took.
 fn timed_tables(
-    k: &CoatedStressKernels,
+    k: &LayeredStressKernels,
     z: f64,
     l: &OffsetLattice,
 ) -> (InfluenceTable, InfluenceTable, f64, f64) {
@@ -110,7 +105,7 @@ fn assert_sub_cell_matches_full(l: &OffsetLattice, h1: f64, ratios: &[f64]) {
 /// `z`, relative to the kernel's peak (on the offsets around the loaded cell, by
 /// `peak_by`): for lattices that need not hold the loaded cell.
 fn sub_cell_error(
-    k: &CoatedStressKernels,
+    k: &LayeredStressKernels,
     z: f64,
     l: &OffsetLattice,
     peak_by: StressMethod,
@@ -141,12 +136,7 @@ fn sub_cell_meets_the_thin_film() {
     let l = lattice(9, -4.0);
     let h1 = 1.0 / 4096.0;
     for (z, side) in depths(h1) {
-        let k = CoatedStressKernels {
-            coating: elastic(3.0, 0.3),
-            thickness: h1,
-            substrate: elastic(1.0, 0.3),
-            interface_side: side,
-        };
+        let k = coated_kernels(elastic(3.0, 0.3), h1, elastic(1.0, 0.3), side);
         let sub = table(&k, z, &l, StressMethod::SubCell);
         let thin = table(&k, z, &l, StressMethod::ThinFilm);
         let e = difference(&sub, &thin) / peak(&sub);
@@ -172,7 +162,7 @@ fn sub_cell_places_shifted_lattices() {
             y_first,
             rows: 3,
         };
-        for (z, side) in [(0.0, Side::Coating), (h1, Side::Substrate)] {
+        for (z, side) in [(0.0, Side::Above), (h1, Side::Below)] {
             let k = kernels(3.0, h1, side);
             let e = sub_cell_error(&k, z, &l, StressMethod::Full);
             println!("first ({x_first}, {y_first}) z {z} {side:?}: {e:.2e}");
@@ -207,9 +197,9 @@ fn thin_sub_cell_taper_agrees_with_the_full_expansion() {
     let l = edge_rows();
     for ratio in [0.01, 1e4] {
         for (h1, z, side) in [
-            (1.0 / 60.0, 0.0, Side::Coating),
-            (1.0 / 30.0, 1.0 / 30.0, Side::Coating),
-            (1.0 / 30.0, 1.0 / 30.0, Side::Substrate),
+            (1.0 / 60.0, 0.0, Side::Above),
+            (1.0 / 30.0, 1.0 / 30.0, Side::Above),
+            (1.0 / 30.0, 1.0 / 30.0, Side::Below),
         ] {
             let k = kernels(ratio, h1, side);
             assert_eq!(k.method(&l), StressMethod::SubCell);
@@ -226,11 +216,7 @@ fn sub_cell_edge_survey() {
     let l = edge_rows();
     for h1 in [1.0 / 30.0, 1.0 / 100.0] {
         for ratio in [3.0, 300.0, 1e4] {
-            for (z, side) in [
-                (0.0, Side::Coating),
-                (h1, Side::Coating),
-                (h1, Side::Substrate),
-            ] {
+            for (z, side) in [(0.0, Side::Above), (h1, Side::Above), (h1, Side::Below)] {
                 let k = kernels(ratio, h1, side);
                 let (full, sub, t_full, t_sub) = timed_tables(&k, z, &l);
                 let scale = peak(&table(&k, z, &lattice(3, -1.0), StressMethod::SubCell));
@@ -265,17 +251,12 @@ fn sub_cell_timing_128() {
     for (ratio, h1) in [(3.0, 1e-3), (300.0, 0.02), (1e4, 0.1)] {
         for (name, l) in [("planes", &planes), ("xz", &xz)] {
             for (z, side) in [
-                (0.0, Side::Coating),
-                (h1, Side::Substrate),
-                (0.7, Side::Substrate),
-                (5.0, Side::Substrate),
+                (0.0, Side::Above),
+                (h1, Side::Below),
+                (0.7, Side::Below),
+                (5.0, Side::Below),
             ] {
-                let k = CoatedStressKernels {
-                    coating: elastic(ratio, 0.3),
-                    thickness: h1,
-                    substrate: elastic(1.0, 0.3),
-                    interface_side: side,
-                };
+                let k = coated_kernels(elastic(ratio, 0.3), h1, elastic(1.0, 0.3), side);
                 let t0 = Instant::now();
                 let _ = table(&k, z, l, k.method(l));
                 println!(

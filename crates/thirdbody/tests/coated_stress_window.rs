@@ -3,9 +3,12 @@
 //! the crate's Papkovich–Neuber potentials), and the window independence of one
 //! loaded cell's stress influence coefficients.
 
-use thirdbody::body::coated_stress::plane_stress_transfer;
-use thirdbody::stress::{CoatedStressKernels, InfluenceTable, OffsetLattice, Side, StressKernels};
+use thirdbody::stress::{InfluenceTable, LayeredStressKernels, OffsetLattice, Side, StressKernels};
 use thirdbody::Elastic;
+
+mod coated_tables;
+#[allow(unused_imports)]
+use coated_tables::*;
 
 fn elastic(young: f64, poisson: f64) -> Elastic {
     Elastic { young, poisson }
@@ -88,12 +91,12 @@ fn airy_transfer(
     }
     let x = solve(m, r);
     let (f, nu) = match side {
-        Side::Coating => {
+        Side::Above => {
             let b = coat(z);
             let f: [f64; 4] = std::array::from_fn(|q| (0..4).map(|j| x[j] * b[j][q]).sum());
             (f, coating.poisson)
         }
-        Side::Substrate => {
+        Side::Below => {
             let b = sub(z);
             let f: [f64; 4] = std::array::from_fn(|q| (0..2).map(|j| x[4 + j] * b[j][q]).sum());
             (f, substrate.poisson)
@@ -143,11 +146,11 @@ fn transfer_agrees_with_an_airy_stress_function_derivation() {
         for kh in [0.05, 0.4, 1.7, 6.0, 20.0] {
             let k = kh / h1;
             for (z, side) in [
-                (0.0, Side::Coating),
-                (0.3 * h1, Side::Coating),
-                (h1, Side::Coating),
-                (h1, Side::Substrate),
-                (1.8 * h1, Side::Substrate),
+                (0.0, Side::Above),
+                (0.3 * h1, Side::Above),
+                (h1, Side::Above),
+                (h1, Side::Below),
+                (1.8 * h1, Side::Below),
             ] {
                 let want = airy_transfer(coating, h1, substrate, k, z, side);
                 let got = plane_stress_transfer(coating, h1, substrate, k, z, side);
@@ -170,7 +173,7 @@ fn transfer_agrees_with_an_airy_stress_function_derivation() {
 }
 
 /// One cell's kernels at depth z on a centred lattice of `n x n` offsets (h = 1).
-fn kernels(k: &CoatedStressKernels, z: f64, n: usize) -> InfluenceTable {
+fn kernels(k: &LayeredStressKernels, z: f64, n: usize) -> InfluenceTable {
     let first = -(((n - 1) / 2) as f64);
     let lattice = OffsetLattice {
         cell: 1.0,
@@ -200,18 +203,13 @@ fn stress_coefficients_do_not_depend_on_the_window() {
         for h1_over_a in [0.1, 0.5, 2.0] {
             let h1 = h1_over_a * a;
             for (z, side) in [
-                (0.0, Side::Coating),
-                (0.5 * h1, Side::Coating),
-                (h1, Side::Coating),
-                (h1, Side::Substrate),
-                (2.0 * h1, Side::Substrate),
+                (0.0, Side::Above),
+                (0.5 * h1, Side::Above),
+                (h1, Side::Above),
+                (h1, Side::Below),
+                (2.0 * h1, Side::Below),
             ] {
-                let k = CoatedStressKernels {
-                    coating: elastic(ratio, 0.3),
-                    thickness: h1,
-                    substrate: elastic(1.0, 0.3),
-                    interface_side: side,
-                };
+                let k = coated_kernels(elastic(ratio, 0.3), h1, elastic(1.0, 0.3), side);
                 let tables: Vec<InfluenceTable> =
                     sizes.iter().map(|&n| kernels(&k, z, n)).collect();
                 let big = &tables[2];

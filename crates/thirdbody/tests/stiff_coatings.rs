@@ -13,17 +13,17 @@ use thirdbody::{
 fn coated(ratio: f64, thickness: f64) -> Case {
     Case {
         slider: Slider::Sphere { radius: 1.0 },
-        body: Body::Coated {
-            coating: Elastic {
+        body: Body::coated(
+            Elastic {
                 young: ratio,
                 poisson: 0.3,
             },
             thickness,
-            substrate: Elastic {
+            Elastic {
                 young: 1.0,
                 poisson: 0.3,
             },
-        },
+        ),
         layer: None,
         loading: Loading {
             normal_load: 5e-6,

@@ -320,17 +320,11 @@ fn interface_summary_of_a_coating_of_the_substrate_material() {
     // their largest sigma_x equals that of the homogeneous plane z = h1.
     let (_, solution, a, _) = solved_hertz();
     let h1 = 0.4 * a;
-    let coated = Body::Coated {
-        coating: Elastic {
-            young: 1.0,
-            poisson: NU,
-        },
-        thickness: h1,
-        substrate: Elastic {
-            young: 1.0,
-            poisson: NU,
-        },
+    let material = Elastic {
+        young: 1.0,
+        poisson: NU,
     };
+    let coated = Body::coated(material, h1, material);
     let request = StressRequest {
         sections: Some(vec![SectionKind::Interface]),
         ..StressRequest::default()

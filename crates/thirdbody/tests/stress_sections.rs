@@ -202,13 +202,14 @@ fn bad_requests_name_the_field() {
         &p,
         &body,
         &Section::Interface {
-            side: thirdbody::stress::Side::Coating,
+            index: 0,
+            side: thirdbody::stress::Side::Above,
         },
     )
     .unwrap_err()
     .to_string();
     assert!(
-        e.contains("stress.sections") && e.contains("coated body"),
+        e.contains("stress.sections") && e.contains("body with interfaces"),
         "{e}"
     );
     // A bad material.

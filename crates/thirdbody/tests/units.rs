@@ -11,6 +11,7 @@
 use std::sync::OnceLock;
 
 use proptest::prelude::*;
+use thirdbody::body::layered::{Base, Ply, Stack};
 use thirdbody::layer::law::Table;
 use thirdbody::stress::StressRequest;
 use thirdbody::{
@@ -43,17 +44,22 @@ fn rescale(case: &Case, f: &Factors) -> Case {
         young: m.young * f.modulus,
         poisson: m.poisson,
     };
-    c.body = match case.body {
-        Body::Homogeneous(m) => Body::Homogeneous(elastic(m)),
-        Body::Coated {
-            coating,
-            thickness,
-            substrate,
-        } => Body::Coated {
-            coating: elastic(coating),
-            thickness: thickness * f.length,
-            substrate: elastic(substrate),
-        },
+    c.body = match &case.body {
+        Body::Homogeneous(m) => Body::Homogeneous(elastic(*m)),
+        Body::Layered(stack) => Body::Layered(Stack {
+            layers: stack
+                .layers
+                .iter()
+                .map(|p| Ply {
+                    material: elastic(p.material),
+                    thickness: p.thickness * f.length,
+                })
+                .collect(),
+            base: match stack.base {
+                Base::HalfSpace(m) => Base::HalfSpace(elastic(m)),
+                rigid => rigid,
+            },
+        }),
     };
     c.slider = match &case.slider {
         Slider::Sphere { radius } => Slider::Sphere {

@@ -123,12 +123,17 @@ pub fn is_output_name(name: &str) -> bool {
     else {
         return false;
     };
+    let number = |k: &str| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit());
+    // `interface_coating` and `interface_substrate`: the names of earlier versions.
     matches!(
         section,
         "xz" | "surface" | "interface_coating" | "interface_substrate" | "block"
-    ) || section
-        .strip_prefix("plane_")
-        .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+    ) || section.strip_prefix("plane_").is_some_and(number)
+        || section.strip_prefix("interface_").is_some_and(|rest| {
+            rest.strip_suffix("_above")
+                .or_else(|| rest.strip_suffix("_below"))
+                .is_some_and(number)
+        })
 }
 
 /// Stages `summary.json` (pretty-printed).

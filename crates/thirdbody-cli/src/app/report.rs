@@ -70,14 +70,30 @@ pub fn stress_summary(s: &thirdbody::stress::StressSummary) -> String {
     if let (Some(lo), Some(hi)) = (s.sigma_x_min, s.sigma_x_max) {
         parts.push(format!("surface sigma_x {lo:.4e} .. {hi:.4e}"));
     }
-    if let (Some(c), Some(b)) = (
-        s.interface_sigma_x_max_coating,
-        s.interface_sigma_x_max_substrate,
-    ) {
+    for i in &s.interfaces {
+        let side = |r: Option<thirdbody::stress::SigmaXRange>| {
+            r.map_or("-".to_string(), |r| format!("{:.4e}", r.sigma_x_max))
+        };
         parts.push(format!(
-            "interface sigma_x max {c:.4e} (coating), {b:.4e} (substrate)"
+            "interface {} (z = {:.4e}) sigma_x max {} above, {} below",
+            i.index,
+            i.depth,
+            side(i.above),
+            side(i.below)
         ));
     }
-    t.push_str(&parts.join("; "));
+    let mut text = parts.join("; ");
+    for l in &s.layers {
+        let name = if l.base {
+            "base    ".to_string()
+        } else {
+            format!("layer {:<2}", l.index)
+        };
+        text.push_str(&format!(
+            "\n  {name}      tau1 max {:.4e}, von Mises max {:.4e} (XZ section)",
+            l.tau1_max, l.von_mises_max
+        ));
+    }
+    t.push_str(&text);
     t
 }

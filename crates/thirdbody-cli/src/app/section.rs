@@ -11,16 +11,22 @@ pub use thirdbody::stress::SectionId;
 /// Labels of a section in the CLI's plots.
 pub trait SectionLabels {
     /// Legend label of its sigma_x row in `stress_sigma_x.png` (paper Figs. 9 and
-    /// 12): the surface and both sides of the interface have one, other sections none.
-    fn sigma_x_row_label(self) -> Option<&'static str>;
+    /// 12): the surface and both sides of each interface have one, other sections
+    /// none.
+    fn sigma_x_row_label(self) -> Option<String>;
 }
 
 impl SectionLabels for SectionId {
-    fn sigma_x_row_label(self) -> Option<&'static str> {
+    fn sigma_x_row_label(self) -> Option<String> {
         match self {
-            SectionId::Surface => Some("surface"),
-            SectionId::Interface(Side::Coating) => Some("interface, coating side"),
-            SectionId::Interface(Side::Substrate) => Some("interface, substrate side"),
+            SectionId::Surface => Some("surface".into()),
+            SectionId::Interface { index, side } => Some(format!(
+                "interface {index}, {} side",
+                match side {
+                    Side::Above => "upper",
+                    Side::Below => "lower",
+                }
+            )),
             _ => None,
         }
     }
@@ -53,8 +59,14 @@ mod tests {
         let labelled: Vec<SectionId> = [
             SectionId::Xz,
             SectionId::Surface,
-            SectionId::Interface(Side::Coating),
-            SectionId::Interface(Side::Substrate),
+            SectionId::Interface {
+                index: 0,
+                side: Side::Above,
+            },
+            SectionId::Interface {
+                index: 1,
+                side: Side::Below,
+            },
             SectionId::Block,
             SectionId::Plane(2),
         ]
@@ -65,8 +77,14 @@ mod tests {
             labelled,
             [
                 SectionId::Surface,
-                SectionId::Interface(Side::Coating),
-                SectionId::Interface(Side::Substrate)
+                SectionId::Interface {
+                    index: 0,
+                    side: Side::Above,
+                },
+                SectionId::Interface {
+                    index: 1,
+                    side: Side::Below,
+                },
             ]
         );
     }

@@ -112,12 +112,18 @@ pub fn write_stress(
             let j = nearest(&f.ys, y_line)?;
             row_y = f.ys[j];
             Some(Series {
-                label: label.to_string(),
+                label,
                 x: lengths(&f.xs),
                 y: (0..f.xs.len())
                     .map(|i| u.stress(f.components[0][f.index(i, j, 0)]))
                     .collect(),
-                dashed: id == SectionId::Interface(Side::Substrate),
+                dashed: matches!(
+                    id,
+                    SectionId::Interface {
+                        side: Side::Below,
+                        ..
+                    }
+                ),
             })
         })
         .collect();

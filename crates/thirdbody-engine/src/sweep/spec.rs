@@ -286,6 +286,14 @@ fn flatten(table: &Table, prefix: &str) -> Vec<(String, Value)> {
         };
         match v {
             Value::Table(t) => out.extend(flatten(t, &key)),
+            // An array of tables (`[[body.layers]]`): `body.layers[0].thickness`, ...
+            Value::Array(list) if !list.is_empty() && list.iter().all(Value::is_table) => {
+                for (i, entry) in list.iter().enumerate() {
+                    if let Value::Table(t) = entry {
+                        out.extend(flatten(t, &format!("{key}[{i}]")));
+                    }
+                }
+            }
             other => out.push((key, other.clone())),
         }
     }
@@ -300,13 +308,16 @@ fn indexed(part: &str) -> Option<(&str, usize)> {
 }
 
 /// The value at a dotted key, if present (`layer.branch_times[0]`: an entry of a
-/// list).
+/// list; `body.layers[1].young`: a key of a table in an array of tables).
 pub fn get<'a>(table: &'a Table, key: &str) -> Option<&'a Value> {
     let parts: Vec<&str> = key.split('.').collect();
     let (last, sections) = parts.split_last()?;
     let mut t = table;
     for part in sections {
-        t = t.get(*part)?.as_table()?;
+        t = match indexed(part) {
+            Some((name, k)) => t.get(name)?.as_array()?.get(k)?.as_table()?,
+            None => t.get(*part)?.as_table()?,
+        };
     }
     match indexed(last) {
         Some((name, k)) => t.get(name)?.as_array()?.get(k),
@@ -320,6 +331,28 @@ pub fn apply(table: &mut Table, key: &str, value: &KeyValue) -> Result<(), Strin
     let (last, sections) = parts.split_last().ok_or("empty key")?;
     let mut t = table;
     for (k, part) in sections.iter().enumerate() {
+        if let Some((name, i)) = indexed(part) {
+            // A table of an array of tables: it must exist (a sweep does not add layers).
+            let entry = t
+                .get_mut(name)
+                .and_then(Value::as_array_mut)
+                .and_then(|list| list.get_mut(i));
+            t = match entry {
+                Some(Value::Table(inner)) => inner,
+                _ => {
+                    return Err(format!(
+                        "{key} names entry {i} of {}, which the case does not have",
+                        parts[..k]
+                            .iter()
+                            .chain([&name])
+                            .copied()
+                            .collect::<Vec<_>>()
+                            .join(".")
+                    ))
+                }
+            };
+            continue;
+        }
         let entry = t
             .entry(part.to_string())
             .or_insert_with(|| Value::Table(Table::new()));
@@ -560,5 +593,47 @@ cells = [64, 64]
         assert_eq!(get(&t, "grid.half_width"), Some(&toml::Value::Float(0.1)));
         let e = apply(&mut t, "grid.cells.x", &KeyValue::Remove).unwrap_err();
         assert!(e.contains("grid.cells is a value, not a section"), "{e}");
+    }
+
+    #[test]
+    fn keys_of_an_array_of_tables_are_indexed() {
+        let text = "[body]\nbase = \"rigid\"\nbonding = \"bonded\"\n\
+                    [[body.layers]]\nyoung = 3.0\npoisson = 0.3\nthickness = 0.1\n\
+                    [[body.layers]]\nyoung = 1.0\npoisson = 0.45\nthickness = 0.5\n";
+        let mut t: Table = toml::from_str(text).unwrap();
+        let keys = leaf_keys(&t, "");
+        assert!(
+            keys.contains(&"body.layers[1].thickness".to_string()),
+            "{keys:?}"
+        );
+        assert!(keys.contains(&"body.base".to_string()), "{keys:?}");
+        assert_eq!(get(&t, "body.layers[1].young"), Some(&Value::Float(1.0)));
+        apply(
+            &mut t,
+            "body.layers[1].thickness",
+            &KeyValue::Set(Value::Float(2.0)),
+        )
+        .unwrap();
+        assert_eq!(
+            get(&t, "body.layers[1].thickness"),
+            Some(&Value::Float(2.0))
+        );
+        assert_eq!(
+            get(&t, "body.layers[0].thickness"),
+            Some(&Value::Float(0.1))
+        );
+        let e = apply(
+            &mut t,
+            "body.layers[2].thickness",
+            &KeyValue::Set(Value::Float(2.0)),
+        )
+        .unwrap_err();
+        assert!(e.contains("entry 2 of body.layers"), "{e}");
+        // The bare key is ambiguous between the layers.
+        let e = resolve_key(&keys, "thickness").unwrap_err();
+        assert!(
+            e.contains("body.layers[0].thickness or body.layers[1].thickness"),
+            "{e}"
+        );
     }
 }

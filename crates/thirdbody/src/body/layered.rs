@@ -1,12 +1,11 @@
 //! A layered elastic body in Fourier space: any stack of perfectly bonded layers
 //! (listed top to bottom) on an elastic half-space or on a rigid base (bonded or
 //! frictionless), under a normal surface pressure. For one wavenumber k > 0 it gives
-//! the surface compliance factor `A(k)`, normalised like
-//! [`super::coated::TransferFactor::factor`],
+//! the surface compliance factor `A(k)` (for one layer on a half-space, Perriot &
+//! Barthel's factor),
 //! `w^(k) = 2 (1 - nu_top^2) / (E_top k) * A(k) * p^(k)`,
-//! and the stresses and displacements at any depth. Conventions are those of
-//! [`super::coated_stress`]: z into the body, surface z = 0, pressure p >= 0
-//! compressive (sigma_zz(0) = -p), w > 0 into the body, stresses tension-positive,
+//! and the stresses and displacements at any depth. Conventions: z into the body,
+//! surface z = 0, pressure p >= 0 compressive (sigma_zz(0) = -p), w > 0 into the body, stresses tension-positive,
 //! `p^(k) = int p e^{-i k.x}`.
 //!
 //! # Equations
@@ -81,9 +80,34 @@
 
 use realfft::num_complex::Complex;
 
-use super::coated_stress::{rotate, StressTransfer};
 use crate::case::Elastic;
 use crate::error::{require_positive, Error, Result};
+
+/// Stress transfer coefficients in the order `[xx, yy, zz, yz, xz, xy]`: the
+/// stresses at a depth under the surface pressure `p^ e^{i (kx x + ky y)}` are these
+/// times `p^ e^{i (kx x + ky y)}` (the shears imaginary, the others real).
+pub type StressTransfer = [Complex<f64>; 6];
+
+/// Rotates the plane-strain stresses of wave vector (kx, ky) to x, y.
+pub(crate) fn rotate(kx: f64, ky: f64, s: [f64; 4]) -> StressTransfer {
+    let k = kx.hypot(ky);
+    let (c, sn) = if k > 0.0 {
+        (kx / k, ky / k)
+    } else {
+        (1.0, 0.0)
+    };
+    let [xixi, etaeta, zz, xiz] = s;
+    // tau_xiz = -xiz sin(k xi) -> complex coefficient i xiz.
+    let shear = Complex::new(0.0, xiz);
+    [
+        Complex::new(xixi * c * c + etaeta * sn * sn, 0.0),
+        Complex::new(xixi * sn * sn + etaeta * c * c, 0.0),
+        Complex::new(zz, 0.0),
+        shear * sn,
+        shear * c,
+        Complex::new((xixi - etaeta) * c * sn, 0.0),
+    ]
+}
 
 /// One layer of a [`Stack`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -135,19 +159,55 @@ impl Stack {
     pub fn validate(&self) -> Result<()> {
         if self.layers.is_empty() && matches!(self.base, Base::Rigid(_)) {
             return Err(Error::invalid(
-                "stack.layers",
+                "body.layers",
                 "[]",
                 "at least one layer on a rigid base",
             ));
         }
         for (i, ply) in self.layers.iter().enumerate() {
-            ply.material.validate(&format!("stack.layers[{i}]"))?;
-            require_positive(&format!("stack.layers[{i}].thickness"), ply.thickness)?;
+            ply.material.validate(&format!("body.layers[{i}]"))?;
+            require_positive(&format!("body.layers[{i}].thickness"), ply.thickness)?;
         }
         if let Base::HalfSpace(m) = self.base {
-            m.validate("stack.base")?;
+            m.validate("body.base")?;
         }
         Ok(())
+    }
+
+    /// The modulus that sets the solver's stress unit: the half-space base's Young's
+    /// modulus, or on a rigid base the stiffest layer's.
+    pub fn reference_modulus(&self) -> f64 {
+        match self.base {
+            Base::HalfSpace(m) => m.young,
+            Base::Rigid(_) => self
+                .layers
+                .iter()
+                .map(|p| p.material.young)
+                .fold(0.0, f64::max),
+        }
+    }
+
+    /// The stack with thicknesses divided by `length` and moduli by `modulus`.
+    pub fn scaled(&self, length: f64, modulus: f64) -> Stack {
+        Stack {
+            layers: self
+                .layers
+                .iter()
+                .map(|p| Ply {
+                    material: p.material.scaled(modulus),
+                    thickness: p.thickness / length,
+                })
+                .collect(),
+            base: match self.base {
+                Base::HalfSpace(m) => Base::HalfSpace(m.scaled(modulus)),
+                rigid => rigid,
+            },
+        }
+    }
+
+    /// The total thickness of the layers.
+    pub fn thickness(&self) -> f64 {
+        self.layers.iter().map(|p| p.thickness).sum()
     }
 
     /// The material at the surface (the first layer's, or the base's if none);
@@ -491,12 +551,13 @@ pub struct LayeredSolver {
 }
 
 /// The plane-strain response at one depth per unit surface pressure, in the
-/// wave-vector frame (module doc of [`super::coated_stress`]): the transfer of
-/// each real entry is itself, of each shear-like entry `i` times it.
+/// wave-vector frame `(xi, eta)`, `xi` along `(kx, ky)`: the transfer of each real
+/// entry is itself, of each shear-like entry `i` times it. Rotating to (x, y), with
+/// `(c, s) = (kx, ky) / k`: `xx = xixi c^2 + etaeta s^2`, `yy = xixi s^2 + etaeta
+/// c^2`, `xy = (xixi - etaeta) c s`, `xz = i T_xiz c`, `yz = i T_xiz s`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlaneResponse {
-    /// `[T_xixi, T_etaeta, T_zz, T_xiz / i]`, as
-    /// [`super::coated_stress::plane_stress_transfer`].
+    /// `[T_xixi, T_etaeta, T_zz, T_xiz / i]`.
     pub stress: [f64; 4],
     /// The displacement along the wave vector, divided by i (per unit `p^`, a length
     /// per unit stress).
@@ -733,8 +794,7 @@ impl LayeredSolver {
     }
 
     /// The stress transfer `[xx, yy, zz, yz, xz, xy]` at depth `z` in layer `layer`
-    /// for the wave vector `(kx, ky) != 0`, as
-    /// [`super::coated_stress::coated_stress_transfer`].
+    /// for the wave vector `(kx, ky) != 0`: [`LayeredSolver::plane_response`] rotated.
     pub fn stress_transfer(&mut self, kx: f64, ky: f64, layer: usize, z: f64) -> StressTransfer {
         let r = self.plane_response(kx.hypot(ky), layer, z);
         rotate(kx, ky, r.stress)
@@ -759,8 +819,9 @@ impl LayeredSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::body::coated::TransferFactor;
-    use crate::body::coated_stress::{coated_stress_transfer, interface_stress_transfer};
+    use crate::body::two_layer_oracle::{
+        coated_stress_transfer, interface_stress_transfer, TransferFactor,
+    };
 
     fn elastic(young: f64, poisson: f64) -> Elastic {
         Elastic { young, poisson }
@@ -991,7 +1052,7 @@ mod tests {
     }
 
     /// The second method: the Papkovich–Neuber potentials of every layer in one
-    /// dense boundary-value system, in the basis of coated_stress.rs (`e^{-(kz -
+    /// dense boundary-value system, in the basis of the two-layer oracle (`e^{-(kz -
     /// k z_top)}`, `e^{kz - k z_bottom}`, psi multiplied by the absolute `kz`), solved
     /// with partial pivoting. Fine for moderate k times the depths.
     struct Dense {
@@ -1086,7 +1147,7 @@ mod tests {
         }
 
         /// `[2 mu u_xi / i, 2 mu w, sigma_zz, tau_xiz / i]`-rows per basis function
-        /// (coated_stress.rs's `quantities`, per unit p / k^2).
+        /// (the two-layer oracle's `quantities`, per unit p / k^2).
         fn rows(&self, body: usize, z: f64) -> [Vec<f64>; 4] {
             let nu = self.materials[body].poisson;
             let zeta = self.k * z;
@@ -1502,42 +1563,38 @@ mod tests {
             assert!(text.starts_with(field), "{text}");
             assert!(!text.contains('\n'));
         };
-        check(vec![], Base::Rigid(BaseContact::Bonded), "stack.layers =");
+        check(vec![], Base::Rigid(BaseContact::Bonded), "body.layers =");
         check(
             vec![good, ply(1.0, 0.3, 0.0)],
             BASES[0],
-            "stack.layers[1].thickness",
+            "body.layers[1].thickness",
         );
         check(
             vec![ply(1.0, 0.3, f64::NAN)],
             BASES[1],
-            "stack.layers[0].thickness",
+            "body.layers[0].thickness",
         );
         check(
             vec![ply(1.0, 0.3, f64::INFINITY)],
             BASES[1],
-            "stack.layers[0].thickness",
+            "body.layers[0].thickness",
         );
-        check(
-            vec![ply(1.0, 0.5, 1.0)],
-            BASES[2],
-            "stack.layers[0].poisson",
-        );
+        check(vec![ply(1.0, 0.5, 1.0)], BASES[2], "body.layers[0].poisson");
         check(
             vec![ply(1.0, -1.0, 1.0)],
             BASES[2],
-            "stack.layers[0].poisson",
+            "body.layers[0].poisson",
         );
-        check(vec![ply(0.0, 0.3, 1.0)], BASES[2], "stack.layers[0].young");
+        check(vec![ply(0.0, 0.3, 1.0)], BASES[2], "body.layers[0].young");
         check(
             vec![good],
             Base::HalfSpace(elastic(-1.0, 0.3)),
-            "stack.base.young",
+            "body.base.young",
         );
         check(
             vec![good],
             Base::HalfSpace(elastic(1.0, 0.6)),
-            "stack.base.poisson",
+            "body.base.poisson",
         );
         assert!(Stack {
             layers: vec![],

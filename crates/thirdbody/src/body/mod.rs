@@ -1,32 +1,41 @@
 //! Elastic bodies under the layer, seen through one small interface,
 //! [`ElasticBody`]: the influence kernel that maps a pressure uniform over one
 //! surface cell to the normal surface displacement at every cell centre (paper eq. 9
-//! for a homogeneous half-space, eq. 10 for a coated one), the stress kernels at a
-//! depth, the depths of material interfaces, and the modulus the automatic window
-//! needs. A case's [`Body`] is plain data; [`Body::model`] is the one place that
+//! for a homogeneous half-space, eq. 10 for a coated one, generalised to any stack of
+//! layers), the stress kernels at a depth, the depths of material interfaces, and the
+//! modulus the automatic window needs. A case's [`Body`] is plain data; [`Body::model`] is the one place that
 //! picks the implementation. The solvers never see more than the kernel's DC-FFT
 //! spectrum (built through [`crate::KernelCache`]).
 
-pub mod coated;
-mod coated_radial;
-pub mod coated_stress;
 pub mod homogeneous;
 pub mod layered;
 pub(crate) mod quadrature;
 pub mod stack;
+#[cfg(test)]
+pub(crate) mod two_layer_oracle;
 
 use std::sync::Arc;
 
-pub use coated::CoatedHalfSpace;
 pub use homogeneous::HomogeneousHalfSpace;
 pub use stack::StackBody;
+
+/// Which side of an interface between two materials a depth equal to the
+/// interface's is read on (stresses that jump there: sigma_x, sigma_y, tau_xy).
+/// For a coating, `Above` is the coating's side and `Below` the substrate's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// The layer above the interface.
+    Above,
+    /// The layer (or half-space) below it.
+    Below,
+}
 
 use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum};
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::provenance::Reference;
-use crate::stress::{Side, StressKernels};
+use crate::stress::StressKernels;
 
 /// An elastic body as the solvers and the stress sections see it.
 pub trait ElasticBody: std::fmt::Debug + Send + Sync {
@@ -39,8 +48,12 @@ pub trait ElasticBody: std::fmt::Debug + Send + Sync {
     /// interface's is read on `interface_side`.
     fn stress_kernels(&self, interface_side: Side) -> Box<dyn StressKernels>;
     /// Depths of the interfaces between materials, from the surface down (none for
-    /// a homogeneous body).
+    /// a homogeneous body); interface `i` lies under layer `i`.
     fn interface_depths(&self) -> Vec<f64>;
+    /// The deepest depth with stresses, if the body ends (a rigid base's face).
+    fn deepest(&self) -> Option<f64> {
+        None
+    }
     /// The smallest plane-strain modulus `E / (1 - nu^2)` of its materials (the
     /// automatic window's Hertz estimate uses it).
     fn softest_modulus(&self) -> f64;
@@ -49,18 +62,15 @@ pub trait ElasticBody: std::fmt::Debug + Send + Sync {
 }
 
 impl Body {
-    /// The implementation of [`ElasticBody`] for this body.
+    /// The implementation of [`ElasticBody`] for this body: the one place a body's
+    /// data meets its model.
     pub fn model(&self) -> Box<dyn ElasticBody> {
-        match *self {
-            Body::Homogeneous(material) => Box::new(HomogeneousHalfSpace { material }),
-            Body::Coated {
-                coating,
-                thickness,
-                substrate,
-            } => Box::new(CoatedHalfSpace {
-                coating,
-                thickness,
-                substrate,
+        match self {
+            Body::Homogeneous(material) => Box::new(HomogeneousHalfSpace {
+                material: *material,
+            }),
+            Body::Layered(stack) => Box::new(StackBody {
+                stack: stack.clone(),
             }),
         }
     }
@@ -76,6 +86,6 @@ pub fn surface_kernel(
 ) -> Result<KernelSpectrum> {
     let quadrant = body
         .model()
-        .surface_kernel_quadrant(grid.cell, grid.nx, grid.ny)?;
+        .surface_kernel_quadrant(grid.cell(), grid.nx(), grid.ny())?;
     plan.even_kernel(quadrant)
 }

@@ -372,7 +372,7 @@ pub fn solve_with(
     };
     let solution = solve_on_windows(&scaled, params, kernels, &mut observe_in_case_units)
         .map_err(|e| scales.unscaled_error(outside_the_model(&scaled, e)))?;
-    let solution = scales.unscaled_solution(solution, case.body, case.loading.normal_load);
+    let solution = scales.unscaled_solution(solution, case.body.clone(), case.loading.normal_load);
     if let Some(name) = solution.summary().first_non_finite() {
         // Finite in the solver's units, so the case's units are what overflow: a
         // moment of 1e98 N times 1e300 m.
@@ -667,7 +667,7 @@ fn finish(
     }
     let solution = Solution {
         grid,
-        body: problem.body,
+        body: problem.body.clone(),
         pressure: p,
         contact_edges: entries,
         body_displacement: wb,

@@ -24,24 +24,24 @@
 //! assert!((field.components[2][k] + 1.0).abs() < 1e-12);
 //! ```
 
-mod coated_kernels;
-mod coated_long_wave;
 pub mod derived;
 pub mod kernels;
+mod layered_kernels;
+mod long_wave;
 pub mod request;
 mod sections;
 
-pub use coated_kernels::CoatedStressKernels;
 pub use kernels::{
     love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice,
     StressKernels, COMPONENTS,
 };
+pub use layered_kernels::{LayeredStressKernels, StressMethod};
 pub use request::{
-    NamedSection, SectionId, SectionKind, StressProgress, StressRequest, StressResults,
-    StressSummary,
+    InterfaceStresses, LayerStresses, NamedSection, SectionId, SectionKind, SigmaXRange,
+    StressProgress, StressRequest, StressResults, StressSummary,
 };
 
-pub use crate::body::coated_stress::Side;
+pub use crate::body::Side;
 use crate::case::Body;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
@@ -69,11 +69,14 @@ pub enum Section {
         /// Depths z >= 0.
         depths: Vec<f64>,
     },
-    /// The coating–substrate interface z = h1 of a coated body, on one side, at
-    /// every cell centre (sigma_x, sigma_y and tau_xy jump there). Elsewhere a
-    /// depth equal to h1 is read on the coating side.
+    /// An interface between two materials of a layered body, on one side, at every
+    /// cell centre (sigma_x, sigma_y and tau_xy jump there). Elsewhere a depth equal
+    /// to an interface's is read on the side above it.
     Interface {
-        /// Which side of the interface.
+        /// Which interface: `index` lies under layer `index` (0: under the top
+        /// layer; for a coating, the coating–substrate interface).
+        index: usize,
+        /// Which side of it.
         side: Side,
     },
 }
@@ -132,16 +135,39 @@ impl Section {
             }
             Section::Plane { z } => check_depth("stress.z", *z),
             Section::Block { depths } => check_depths(depths),
-            Section::Interface { .. } => {
-                if body.model().interface_depths().is_empty() {
+            Section::Interface { index, .. } => {
+                let count = body.model().interface_depths().len();
+                if count == 0 {
                     return Err(Error::invalid(
                         "stress.sections",
                         "interface",
-                        "an interface section only for a coated body",
+                        "an interface section only for a body with interfaces (a coating or \
+                         layers on a half-space, or two or more layers on a rigid base)",
+                    ));
+                }
+                if *index >= count {
+                    return Err(Error::invalid(
+                        "stress.interface",
+                        index,
+                        &format!(
+                            "an interface index from 0 to {} (interface i lies under layer i)",
+                            count - 1
+                        ),
                     ));
                 }
                 Ok(())
             }
+        }
+    }
+
+    /// The deepest depth the section reads.
+    fn deepest(&self) -> f64 {
+        match self {
+            Section::XzPlane { depths, .. } | Section::Block { depths } => {
+                depths.iter().fold(0.0, |m: f64, &z| m.max(z))
+            }
+            Section::Plane { z } => *z,
+            Section::Interface { .. } => 0.0,
         }
     }
 
@@ -236,8 +262,7 @@ impl StressField {
 }
 
 /// The stress kernels of a body: the hook where each body type supplies its own.
-/// For a coated body, a depth equal to the coating thickness is read on
-/// `interface_side`.
+/// A depth equal to an interface's is read on `interface_side`.
 pub fn stress_kernels(body: &Body, interface_side: Side) -> Result<Box<dyn StressKernels>> {
     body.validate()?;
     Ok(body.model().stress_kernels(interface_side))
@@ -310,6 +335,16 @@ pub fn stresses_observed(
         ));
     }
     section.validate(body)?;
+    if let Some(base) = body.model().deepest() {
+        let z = section.deepest();
+        if z > base * (1.0 + 1e-12) {
+            return Err(Error::invalid(
+                "stress.depths",
+                z,
+                &format!("depths within the layers, at most the rigid base's depth {base:e}"),
+            ));
+        }
+    }
     // In the solver's units (crate::units): the kernels' powers of lengths stay in
     // double precision's range whatever the case's units. Powers of two: exact both
     // ways.
@@ -326,7 +361,10 @@ pub fn stresses_observed(
         Section::Block { depths } => Section::Block {
             depths: lengths(depths),
         },
-        Section::Interface { side } => Section::Interface { side: *side },
+        Section::Interface { index, side } => Section::Interface {
+            index: *index,
+            side: *side,
+        },
     };
     let scaled_pressure: Vec<f64> = pressure.iter().map(|&p| scales.pressure(p)).collect();
     let mut field = stresses_in_units(
@@ -359,8 +397,8 @@ fn stresses_in_units(
     depth_done: &(dyn Fn() + Sync),
 ) -> Result<StressField> {
     let side = match section {
-        Section::Interface { side } => *side,
-        _ => Side::Coating,
+        Section::Interface { side, .. } => *side,
+        _ => Side::Above,
     };
     let kernels = stress_kernels(body, side)?;
     let xs: Vec<f64> = (0..grid.nx).map(|i| grid.x(i)).collect();
@@ -391,8 +429,8 @@ fn stresses_in_units(
             zs: depths.clone(),
             components: sections::planes(grid, pressure, kernels.as_ref(), depths, depth_done),
         },
-        Section::Interface { .. } => {
-            let thickness = body.model().interface_depths()[0];
+        Section::Interface { index, .. } => {
+            let thickness = body.model().interface_depths()[*index];
             StressField {
                 xs,
                 ys: all_ys(),

@@ -2,13 +2,14 @@
 //! section, docs/case-file.md), turned into concrete [`Section`]s, and the scalar
 //! results read off them: the maximum shear `tau1 = (s1 - s3)/2` in the XZ plane and
 //! where it lies (paper Fig. 10), the extremes of the tensile-compressive stress
-//! sigma_x on the surface (Fig. 9) and, for a coated body, on both sides of the
-//! coating–substrate interface (Fig. 12), where brittle cracks start.
+//! sigma_x on the surface (Fig. 9) and, for a layered body, on both sides of every
+//! interface (Fig. 12), where brittle cracks start and coatings delaminate, and per
+//! layer the largest tau1 and von Mises stress in the XZ section.
 //!
 //! Defaults (an empty `[stress]` section): the XZ plane through y = 0 from the surface
-//! down to three contact half-lengths in 64 depths, the surface plane, and for a
-//! coated body both sides of the interface. The contact half-length is the larger
-//! half-extent of the loaded cells along x and y.
+//! down to three contact half-lengths (no deeper than a rigid base) in 64 depths, the
+//! surface plane, and for a layered body both sides of every interface. The contact
+//! half-length is the larger half-extent of the loaded cells along x and y.
 
 use super::{stresses_observed, Section, Side, StressField};
 use crate::case::Body;
@@ -27,7 +28,7 @@ pub enum SectionKind {
     Xz,
     /// The surface z = 0 at every cell centre.
     Surface,
-    /// Both sides of the coating–substrate interface (coated bodies only).
+    /// Both sides of every interface of a layered body.
     Interface,
     /// Every cell centre at `depth_points` depths (a 3-D block).
     Block,
@@ -89,8 +90,13 @@ pub enum SectionId {
     Xz,
     /// The surface z = 0.
     Surface,
-    /// One side of the coating–substrate interface.
-    Interface(Side),
+    /// One side of an interface (`index`: under layer `index`).
+    Interface {
+        /// Which interface, from 0 under the top layer.
+        index: usize,
+        /// Which side.
+        side: Side,
+    },
     /// The 3-D block.
     Block,
     /// The request's k-th extra plane (from 1).
@@ -98,14 +104,19 @@ pub enum SectionId {
 }
 
 impl SectionId {
-    /// The name its outputs carry: `xz`, `surface`, `interface_coating`,
-    /// `interface_substrate`, `block`, `plane_1`, ...
+    /// The name its outputs carry: `xz`, `surface`, `interface_0_above`,
+    /// `interface_0_below`, `block`, `plane_1`, ...
     pub fn name(self) -> String {
         match self {
             SectionId::Xz => "xz".into(),
             SectionId::Surface => "surface".into(),
-            SectionId::Interface(Side::Coating) => "interface_coating".into(),
-            SectionId::Interface(Side::Substrate) => "interface_substrate".into(),
+            SectionId::Interface { index, side } => format!(
+                "interface_{index}_{}",
+                match side {
+                    Side::Above => "above",
+                    Side::Below => "below",
+                }
+            ),
             SectionId::Block => "block".into(),
             SectionId::Plane(k) => format!("plane_{k}"),
         }
@@ -148,12 +159,58 @@ pub struct StressSummary {
     /// Most tensile sigma_x on the surface.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sigma_x_max: Option<f64>,
-    /// Most tensile sigma_x on the coating side of the interface.
+    /// Most tensile sigma_x on the upper side of the first interface (a coating's
+    /// side of its interface with the substrate; `interfaces[0].above.sigma_x_max`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_sigma_x_max_coating: Option<f64>,
-    /// Most tensile sigma_x on the substrate side of the interface.
+    /// Most tensile sigma_x on the lower side of the first interface (the
+    /// substrate's side, for a coating).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_sigma_x_max_substrate: Option<f64>,
+    /// Per interface, from the surface down: sigma_x's extremes on each side.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub interfaces: Vec<InterfaceStresses>,
+    /// Per layer of a layered body, from the surface down (an elastic base last):
+    /// the largest tau1 and von Mises stress in the XZ section.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub layers: Vec<LayerStresses>,
+}
+
+/// sigma_x's extremes on the two sides of one interface.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct InterfaceStresses {
+    /// The interface's index (under layer `index`).
+    pub index: usize,
+    /// Its depth.
+    pub depth: f64,
+    /// Most compressive and most tensile sigma_x just above it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub above: Option<SigmaXRange>,
+    /// The same just below it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub below: Option<SigmaXRange>,
+}
+
+/// The most compressive and most tensile sigma_x on a plane.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct SigmaXRange {
+    /// Most compressive sigma_x.
+    pub sigma_x_min: f64,
+    /// Most tensile sigma_x.
+    pub sigma_x_max: f64,
+}
+
+/// The largest stresses of one layer in the XZ section.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct LayerStresses {
+    /// The layer's index (the elastic base: the number of layers).
+    pub index: usize,
+    /// Whether it is the elastic base (the half-space under the layers).
+    pub base: bool,
+    /// Largest maximum shear `tau1` at the section's depths in the layer.
+    pub tau1_max: f64,
+    /// Largest von Mises stress there.
+    pub von_mises_max: f64,
 }
 
 /// Deepest `stress.max_depth` allowed, in widths of the solved window: far deeper
@@ -248,7 +305,8 @@ impl StressRequest {
                     return Err(Error::invalid(
                         "stress.sections",
                         "interface",
-                        "\"interface\" only with a [coating]",
+                        "\"interface\" only for a body with interfaces (a [coating], or \
+                         [[body.layers]] on a half-space or two or more on a rigid base)",
                     ));
                 }
             }
@@ -269,7 +327,9 @@ impl StressRequest {
             .map(|kind| match kind {
                 SectionKind::Xz => nx * depths,
                 SectionKind::Surface => nx * ny,
-                SectionKind::Interface => 2.0 * nx * ny,
+                SectionKind::Interface => {
+                    2.0 * nx * ny * body.model().interface_depths().len() as f64
+                }
                 SectionKind::Block => nx * ny * depths,
             })
             .sum::<f64>()
@@ -335,9 +395,38 @@ impl StressRequest {
                 ),
             ));
         }
-        let depths = match self.max_depth {
-            Some(_) => self.depths(0.0),
-            None => self.depths(contact_half_length(grid, pressure)?),
+        let base = body.model().deepest();
+        if let (Some(z), Some(base)) = (self.max_depth, base) {
+            if z > base {
+                return Err(Error::invalid(
+                    "stress.max_depth",
+                    z,
+                    &format!("a depth of at most the rigid base's, {base:.4e}"),
+                ));
+            }
+        }
+        for (k, &z) in self.planes.iter().enumerate() {
+            if base.is_some_and(|base| z > base) {
+                return Err(Error::invalid(
+                    &format!("stress.planes[{k}]"),
+                    z,
+                    &format!(
+                        "a depth of at most the rigid base's, {:.4e}",
+                        base.unwrap_or(0.0)
+                    ),
+                ));
+            }
+        }
+        let depths = match (self.max_depth, base) {
+            (Some(_), _) => self.depths(0.0),
+            (None, base) => {
+                let half = contact_half_length(grid, pressure)?;
+                let mut request = self.clone();
+                request.max_depth = base
+                    .filter(|&b| b < DEFAULT_DEPTH_IN_HALF_LENGTHS * half)
+                    .or(Some(DEFAULT_DEPTH_IN_HALF_LENGTHS * half));
+                request.depths(0.0)
+            }
         };
         let mut out = Vec::new();
         let mut push = |id: SectionId, section: Section| out.push(NamedSection { id, section });
@@ -352,18 +441,14 @@ impl StressRequest {
                 ),
                 SectionKind::Surface => push(SectionId::Surface, Section::Plane { z: 0.0 }),
                 SectionKind::Interface => {
-                    push(
-                        SectionId::Interface(Side::Coating),
-                        Section::Interface {
-                            side: Side::Coating,
-                        },
-                    );
-                    push(
-                        SectionId::Interface(Side::Substrate),
-                        Section::Interface {
-                            side: Side::Substrate,
-                        },
-                    );
+                    for index in 0..body.model().interface_depths().len() {
+                        for side in [Side::Above, Side::Below] {
+                            push(
+                                SectionId::Interface { index, side },
+                                Section::Interface { index, side },
+                            );
+                        }
+                    }
                 }
                 SectionKind::Block => push(
                     SectionId::Block,
@@ -411,7 +496,7 @@ impl StressRequest {
             let field = stresses_observed(grid, pressure, body, &n.section, &depth_done)?;
             sections.push((n, field));
         }
-        let summary = summarise(&sections);
+        let summary = summarise(&sections, body);
         Ok(StressResults { sections, summary })
     }
 }
@@ -440,16 +525,21 @@ fn contact_half_length(grid: &Grid, pressure: &[f64]) -> Result<f64> {
     }
 }
 
-/// Reads the summary off computed sections.
-pub fn summarise(sections: &[(NamedSection, StressField)]) -> StressSummary {
+/// Reads the summary off computed sections on `body`.
+pub fn summarise(sections: &[(NamedSection, StressField)], body: &Body) -> StressSummary {
     let mut s = StressSummary::default();
-    let sigma_x_extremes = |f: &StressField| {
-        f.components[0]
+    let sigma_x_range = |f: &StressField| {
+        let (lo, hi) = f.components[0]
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
                 (lo.min(v), hi.max(v))
-            })
+            });
+        SigmaXRange {
+            sigma_x_min: lo,
+            sigma_x_max: hi,
+        }
     };
+    let interface_depths = body.model().interface_depths();
     for (named, field) in sections {
         match named.id {
             SectionId::Xz => {
@@ -460,20 +550,70 @@ pub fn summarise(sections: &[(NamedSection, StressField)]) -> StressSummary {
                     s.tau1_max_x = Some(field.xs[n % field.xs.len()]);
                     s.tau1_max_z = Some(field.zs[n / nx]);
                 }
+                if let Body::Layered(stack) = body {
+                    s.layers = layer_maxima(field, &stack.interface_depths(), &tau1);
+                }
             }
             SectionId::Surface => {
-                let (lo, hi) = sigma_x_extremes(field);
-                s.sigma_x_min = Some(lo);
-                s.sigma_x_max = Some(hi);
+                let r = sigma_x_range(field);
+                s.sigma_x_min = Some(r.sigma_x_min);
+                s.sigma_x_max = Some(r.sigma_x_max);
             }
-            SectionId::Interface(Side::Coating) => {
-                s.interface_sigma_x_max_coating = Some(sigma_x_extremes(field).1)
-            }
-            SectionId::Interface(Side::Substrate) => {
-                s.interface_sigma_x_max_substrate = Some(sigma_x_extremes(field).1)
+            SectionId::Interface { index, side } => {
+                if s.interfaces.len() <= index {
+                    s.interfaces.resize_with(index + 1, Default::default);
+                }
+                let entry = &mut s.interfaces[index];
+                entry.index = index;
+                entry.depth = interface_depths.get(index).copied().unwrap_or(f64::NAN);
+                let r = sigma_x_range(field);
+                match side {
+                    Side::Above => entry.above = Some(r),
+                    Side::Below => entry.below = Some(r),
+                }
+                if index == 0 {
+                    match side {
+                        Side::Above => s.interface_sigma_x_max_coating = Some(r.sigma_x_max),
+                        Side::Below => s.interface_sigma_x_max_substrate = Some(r.sigma_x_max),
+                    }
+                }
             }
             _ => {}
         }
     }
+    // Interfaces not asked for keep no entry.
+    s.interfaces
+        .retain(|i| i.above.is_some() || i.below.is_some());
     s
+}
+
+/// Per layer (bottoms at `bottoms`, an elastic base below the last), the largest
+/// tau1 and von Mises stress at the section's depths in it (a depth on an interface
+/// counts for the layer above, as the section reads it there).
+fn layer_maxima(field: &StressField, bottoms: &[f64], tau1: &[f64]) -> Vec<LayerStresses> {
+    let von_mises = field.von_mises();
+    let per_depth = field.xs.len() * field.ys.len();
+    let mut out: Vec<LayerStresses> = Vec::new();
+    for (k, &z) in field.zs.iter().enumerate() {
+        let layer = bottoms
+            .iter()
+            .position(|&b| z <= b)
+            .unwrap_or(bottoms.len());
+        let range = k * per_depth..(k + 1) * per_depth;
+        let t = tau1[range.clone()].iter().fold(0.0f64, |m, &v| m.max(v));
+        let v = von_mises[range].iter().fold(0.0f64, |m, &v| m.max(v));
+        if let Some(e) = out.iter_mut().find(|e| e.index == layer) {
+            e.tau1_max = e.tau1_max.max(t);
+            e.von_mises_max = e.von_mises_max.max(v);
+        } else {
+            out.push(LayerStresses {
+                index: layer,
+                base: layer == bottoms.len(),
+                tau1_max: t,
+                von_mises_max: v,
+            });
+        }
+    }
+    out.sort_by_key(|e| e.index);
+    out
 }

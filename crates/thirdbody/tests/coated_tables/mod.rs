@@ -1,13 +1,111 @@
-//! Helpers of the coated stress-kernel tests (`coated_stress_limits.rs`,
-//! `coated_stress_sub_cell.rs`): one cell's coefficient tables by a chosen method,
-//! on square lattices of offsets (cell 1), and their peak and differences.
+//! Helpers of the coating tests (`coated_*.rs`): a coating as a stack of one layer
+//! on a half-space, its transfers from [`LayeredSolver`], its surface kernel, one
+//! cell's stress coefficient tables by a chosen method on square lattices of offsets
+//! (cell 1), and their peak and differences.
 
-use thirdbody::body::coated_stress::StressMethod;
+#![allow(dead_code)]
+
+use thirdbody::body::layered::{Base, LayeredSolver, Ply, Stack, StressTransfer};
+use thirdbody::body::StackBody;
 use thirdbody::case::Elastic;
-use thirdbody::stress::{CoatedStressKernels, InfluenceTable, OffsetLattice};
+use thirdbody::stress::{InfluenceTable, LayeredStressKernels, OffsetLattice, Side, StressMethod};
+use thirdbody::Result;
 
 pub fn elastic(young: f64, poisson: f64) -> Elastic {
     Elastic { young, poisson }
+}
+
+/// A coating of thickness `h1` on a substrate half-space.
+pub fn coating(coating: Elastic, h1: f64, substrate: Elastic) -> Stack {
+    Stack {
+        layers: vec![Ply {
+            material: coating,
+            thickness: h1,
+        }],
+        base: Base::HalfSpace(substrate),
+    }
+}
+
+/// The stress kernels of a coating.
+pub fn coated_kernels(c: Elastic, h1: f64, s: Elastic, side: Side) -> LayeredStressKernels {
+    LayeredStressKernels {
+        stack: coating(c, h1, s),
+        interface_side: side,
+    }
+}
+
+/// The wave-frame transfer `[xixi, etaeta, zz, xiz / i]` at k >= 0, depth z, on
+/// `side` of the interface (the coating above it, the substrate below); at k = 0
+/// its limit, extrapolated from two small wavenumbers.
+pub fn plane_stress_transfer(
+    c: Elastic,
+    h1: f64,
+    s: Elastic,
+    k: f64,
+    z: f64,
+    side: Side,
+) -> [f64; 4] {
+    let layer = usize::from(side == Side::Below);
+    let mut solver = LayeredSolver::new(&coating(c, h1, s)).unwrap();
+    if k == 0.0 {
+        let e = 1e-7 / (h1 + z);
+        let a = solver.plane_response(e, layer, z).stress;
+        let b = solver.plane_response(2.0 * e, layer, z).stress;
+        return std::array::from_fn(|q| 2.0 * a[q] - b[q]);
+    }
+    solver.plane_response(k, layer, z).stress
+}
+
+/// The stress transfer at depth z (the coating's side at z = h1).
+pub fn coated_stress_transfer(
+    c: Elastic,
+    h1: f64,
+    s: Elastic,
+    kx: f64,
+    ky: f64,
+    z: f64,
+) -> StressTransfer {
+    let layer = usize::from(z > h1);
+    LayeredSolver::new(&coating(c, h1, s))
+        .unwrap()
+        .stress_transfer(kx, ky, layer, z)
+}
+
+/// The stress transfer on both sides of the interface.
+pub fn interface_stress_transfer(
+    c: Elastic,
+    h1: f64,
+    s: Elastic,
+    kx: f64,
+    ky: f64,
+) -> (StressTransfer, StressTransfer) {
+    let mut solver = LayeredSolver::new(&coating(c, h1, s)).unwrap();
+    (
+        solver.stress_transfer(kx, ky, 0, h1),
+        solver.stress_transfer(kx, ky, 1, h1),
+    )
+}
+
+/// The surface factor `A(t)` at `t = k h1`.
+pub fn coating_factor(c: Elastic, s: Elastic, t: f64) -> f64 {
+    LayeredSolver::new(&coating(c, 1.0, s))
+        .unwrap()
+        .surface_factor(t)
+}
+
+/// The surface kernel quadrant of a coating on cells of side `cell`.
+pub fn coated_surface_kernel(
+    c: Elastic,
+    h1: f64,
+    s: Elastic,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+) -> Result<Vec<f64>> {
+    StackBody {
+        stack: coating(c, h1, s),
+    }
+    .surface_kernel_quadrant(cell, nx, ny)
 }
 
 /// A lattice of `n x n` offsets starting at `first` (cells) on both axes, cell 1.
@@ -23,7 +121,7 @@ pub fn square_lattice(n: usize, first: f64) -> OffsetLattice {
 
 /// The coefficients of `k` at depth `z` on `l` by method `m`.
 pub fn table(
-    k: &CoatedStressKernels,
+    k: &LayeredStressKernels,
     z: f64,
     l: &OffsetLattice,
     m: StressMethod,

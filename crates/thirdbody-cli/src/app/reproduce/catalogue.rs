@@ -67,11 +67,7 @@ fn homogeneous(r: Resolution, layer: Layer) -> Case {
 }
 
 fn coated(r: Resolution, thickness: f64, layer: Layer) -> Case {
-    let body = Body::Coated {
-        coating: COATING,
-        thickness,
-        substrate: SUBSTRATE,
-    };
+    let body = Body::coated(COATING, thickness, SUBSTRATE);
     case(r, body, layer, LOAD, VELOCITY)
 }
 
@@ -219,7 +215,10 @@ pub fn fig7(r: Resolution) -> Study {
 /// Fig. 8: mu against V' (1e-4 to 1e-1) at Q' = 25e-6, the linear law first.
 pub fn fig8(r: Resolution) -> Study {
     let body = Body::Homogeneous(SUBSTRATE);
-    let at = |layer: Layer| move |v: f64| case(r, body, layer.clone(), FIG8_LOAD, v);
+    let at = |layer: Layer| {
+        let body = body.clone();
+        move |v: f64| case(r, body.clone(), layer.clone(), FIG8_LOAD, v)
+    };
     study(
         "V'",
         log_space(1e-4, 1e-1, r.points),
@@ -356,20 +355,21 @@ pub fn parameter_line<'a>(
 ) -> String {
     let cases: Vec<&Case> = cases.into_iter().collect();
     let coatings = || {
-        cases.iter().filter_map(|c| match c.body {
-            Body::Coated {
-                coating,
-                thickness,
-                substrate,
-            } => Some((coating.young / substrate.young, coating.poisson, thickness)),
-            Body::Homogeneous(_) => None,
+        cases.iter().filter_map(|c| {
+            let (coating, thickness, substrate) = c.body.as_coating()?;
+            Some((coating.young / substrate.young, coating.poisson, thickness))
         })
     };
     let layers = cases.iter().filter_map(|c| c.layer.as_ref());
     let parameters = [
         Parameter::of("Q'", cases.iter().map(|c| c.loading.normal_load)),
         Parameter::of("V'", cases.iter().filter_map(|c| c.loading.velocity)),
-        Parameter::of("nu2", cases.iter().map(|c| c.body.substrate().poisson)),
+        Parameter::of(
+            "nu2",
+            cases
+                .iter()
+                .filter_map(|c| c.body.half_space().map(|m| m.poisson)),
+        ),
         Parameter::of("E1/E2", coatings().map(|c| c.0)),
         Parameter::of("nu1", coatings().map(|c| c.1)),
         Parameter::of("h1'", coatings().map(|c| c.2)),

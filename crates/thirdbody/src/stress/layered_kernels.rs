@@ -1,9 +1,13 @@
-//! Stress kernels of a coated half-space (coating E1, nu1, thickness h1 bonded to a
-//! substrate E2, nu2; paper eq. 5): the six stresses at depth z per unit pressure on
-//! one square surface cell, for the DC-FFT sections of [`super`].
+//! Stress kernels of a layered body (bonded layers on a half-space or a rigid base,
+//! [`crate::body::layered`]; the paper's coating, eq. 5, is one layer of thickness
+//! h1 on a substrate): the six stresses at depth z per unit pressure on one square
+//! surface cell, for the DC-FFT sections of [`super`]. Below, "the coating" is the top
+//! layer (thickness h1) and "the substrate" any depth below it, read in its own
+//! layer's material.
 //!
 //! In Fourier space the stresses at depth z are `T(k, z) p^(k)` with the transfer
-//! functions `T` of [`crate::body::coated_stress`]; the kernel of a cell of side h is
+//! functions `T` of [`crate::body::layered::LayeredSolver::plane_response`]; the
+//! kernel of a cell of side h is
 //! `S(X) = (1 / 4 pi^2) int T(k) P(k) e^{i k.X} dk`, `P = h^2 sinc(kx h/2) sinc(ky h/2)`.
 //! `T` does not decay at large k near the surface, and in the coating it does not
 //! vanish at k -> 0, so `S` is split into three parts, each computed where it is
@@ -26,7 +30,7 @@
 //!    times `i (c, s)` in the shears.
 //! 3. The remainder, O(k^2) at k -> 0 and decaying at large k like `e^{-k lambda}`
 //!    (the reflection from the interface), split by the smooth share `chi(k) = e^{-q}
-//!    sum_{j<8} q^j / j!`, `q = (k / k1)^2` ([`super::coated_long_wave`]):
+//!    sum_{j<8} q^j / j!`, `q = (k / k1)^2` ([`super::long_wave`]):
 //!    (a) its short waves `(1 - chi) T` are summed on a periodic lattice of the cell
 //!    pitch: base wavenumbers `2 pi j / (M h)` plus their aliases `2 pi m / h` until
 //!    `e^{-k lambda}` is negligible, then one inverse 2-D FFT. The four wave-frame
@@ -34,7 +38,7 @@
 //!    towards k = 0. The cost per depth grows like `(h / lambda)^2` for coatings
 //!    thinner than a cell (the aliases resolve the sub-cell structure);
 //!    (b) its long waves `chi T` in free space, by Hankel transforms
-//!    ([`super::coated_long_wave`]).
+//!    ([`super::long_wave`]).
 //!    For a coating thinner than a cell ([`StressMethod::SubCell`]) the split is
 //!    moved to `k1 = 4 / h`: the short waves' kernel then lies within five cells, so
 //!    a 16 x 16 box holds it, and its alias sum is capped at 128 orders per axis
@@ -71,8 +75,8 @@
 //! sections of the stiff case agree with a brute-force Fourier quadrature to 2.4e-7
 //! of the peak (`tests/coated_stress_brute_force.rs`).
 //!
-//! With E1 = E2 and nu1 = nu2 the remainder and the carrier vanish (to rounding), and
-//! the kernels are Love's. At the interface each side uses its own transfer and its
+//! With all materials equal the remainder and the carrier vanish (to rounding), and
+//! the kernels are Love's. At an interface each side uses its own transfer and its
 //! own nu: sigma_z, tau_xz and tau_yz are continuous (Love's are independent of nu),
 //! sigma_x, sigma_y and tau_xy jump as continuity of the in-plane strains demands.
 
@@ -83,14 +87,39 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
 
-use super::coated_long_wave::{long_wave_kernels, long_wave_share, short_wave_share, BAND_EDGE};
 use super::kernels::{
     HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
 };
-use crate::body::coated_stress::{plane_stress_transfer, Side, StressMethod};
+use super::long_wave::{long_wave_kernels, long_wave_share, short_wave_share, BAND_EDGE};
+use crate::body::layered::{Base, LayeredSolver, Stack};
 use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
+use crate::body::Side;
 use crate::case::Elastic;
+
+/// How a layered body's stress kernels are computed ([`LayeredStressKernels`] picks
+/// one per lattice and depth; tests compare them on both sides of each switch). `h1`
+/// is the top layer's thickness, `d` the stack's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StressMethod {
+    /// Love's kernels, two carriers and the remainder (lattice sum and Hankel
+    /// transforms): exact, at a cost that grows like `(cell / h1)^2` for thin top
+    /// layers.
+    Full,
+    /// A top layer thinner than the cell: as `Full`, but the remainder is split at
+    /// `k1 = 4 / cell`: its short waves (a kernel within five cells of the loaded
+    /// one) on a small periodic box whose alias sum is capped and smoothly tapered,
+    /// its long waves in bands of wavenumbers a factor 4 apart, each on a box wider
+    /// than its kernel's reach, and below `~4 / span` by Hankel transforms. The
+    /// cost grows neither with `cell / h1` nor with the modulus ratios.
+    SubCell,
+    /// A stack much thinner than the cell: Love's kernels and the two carriers (the
+    /// long-wave limit and its O(k d) slope), without the O((k l)^2) remainder.
+    ThinFilm,
+    /// A top layer much thicker than the window: Love's kernels of the depth's
+    /// material plus the constant the far interfaces add.
+    ThickCoating,
+}
 
 /// Relative size of the last alias term kept: `e^{-k lambda}` below `e^{-ALIAS_DECAY}`.
 const ALIAS_DECAY: f64 = 32.0;
@@ -149,58 +178,120 @@ pub const THICK_COATING: f64 = 1e-4;
 /// below 1e-3 of the peak (`tests/coated_stress_limits.rs`, docs/validation.md).
 pub const THIN_FILM: f64 = 2.5e-5;
 
-/// Stress kernels of a coated half-space.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CoatedStressKernels {
-    /// The coating (E1, nu1).
-    pub coating: Elastic,
-    /// Coating thickness h1 > 0.
-    pub thickness: f64,
-    /// The substrate (E2, nu2).
-    pub substrate: Elastic,
-    /// The side read at z = h1 exactly.
+/// Stress kernels of a layered body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayeredStressKernels {
+    /// The stack (validated, at least one layer).
+    pub stack: Stack,
+    /// The side read at a depth equal to an interface's.
     pub interface_side: Side,
 }
 
-impl CoatedStressKernels {
-    fn side(&self, z: f64) -> Side {
-        if z < self.thickness {
-            Side::Coating
-        } else if z > self.thickness {
-            Side::Substrate
-        } else {
-            self.interface_side
+impl LayeredStressKernels {
+    /// The top layer's thickness h1.
+    fn top_thickness(&self) -> f64 {
+        self.stack.layers[0].thickness
+    }
+
+    /// The index of the layer that holds depth z (`layers.len()`: the half-space
+    /// base); at an interface, the side `interface_side` picks. A depth below a
+    /// rigid base (refused by the stress requests) is read in the last layer.
+    fn layer(&self, z: f64) -> usize {
+        let n = self.stack.layers.len();
+        let mut bottom = 0.0;
+        for (i, ply) in self.stack.layers.iter().enumerate() {
+            bottom += ply.thickness;
+            if z < bottom {
+                return i;
+            }
+            if z == bottom {
+                let below = i + 1 < n || matches!(self.stack.base, Base::HalfSpace(_));
+                return if self.interface_side == Side::Below && below {
+                    i + 1
+                } else {
+                    i
+                };
+            }
+        }
+        match self.stack.base {
+            Base::HalfSpace(_) => n,
+            Base::Rigid(_) => n - 1,
         }
     }
 
-    /// The long-wave in-plane stresses of the coating minus Love's, `(d_xi, d_eta)`:
-    /// zero on the substrate side.
-    fn long_wave_difference(&self, side: Side) -> (f64, f64) {
-        match side {
-            Side::Substrate => (0.0, 0.0),
-            Side::Coating => {
-                let t = plane_stress_transfer(
-                    self.coating,
-                    self.thickness,
-                    self.substrate,
-                    0.0,
-                    0.0,
-                    Side::Coating,
-                );
-                let nu = self.coating.poisson;
-                (t[0] + 1.0, t[1] + 2.0 * nu)
-            }
+    /// The material of layer `layer` (`layers.len()`: the base half-space).
+    fn material(&self, layer: usize) -> Elastic {
+        match (self.stack.layers.get(layer), self.stack.base) {
+            (Some(ply), _) => ply.material,
+            (None, Base::HalfSpace(m)) => m,
+            (None, Base::Rigid(_)) => unreachable!("no material below a rigid base"),
+        }
+    }
+
+    /// The wave-frame transfer `[xixi, etaeta, zz, xiz / i]` at wavenumber k >= 0 and
+    /// depth z in `layer` (`crate::body::layered`); at k = 0 its long-wave limit.
+    fn transfer(&self, k: f64, layer: usize, z: f64) -> [f64; 4] {
+        if k == 0.0 {
+            return self.long_wave_transfer(layer, z);
+        }
+        let mut solver = LayeredSolver::new(&self.stack).expect("a validated stack");
+        solver.plane_response(k, layer, z).stress
+    }
+
+    /// The transfer's limit at k -> 0: Richardson's extrapolation `2 T(e) - T(2 e)`
+    /// from a wavenumber far below every length of the stack, its membrane lengths
+    /// (a stiff layer's `(E / E_min) h`) included: the error is `O((e L)^2)`, about
+    /// 1e-12.
+    fn long_wave_transfer(&self, layer: usize, z: f64) -> [f64; 4] {
+        let softest = self
+            .stack
+            .layers
+            .iter()
+            .map(|p| p.material.young)
+            .chain(match self.stack.base {
+                Base::HalfSpace(m) => Some(m.young),
+                Base::Rigid(_) => None,
+            })
+            .fold(f64::INFINITY, f64::min);
+        let length: f64 = z + self
+            .stack
+            .layers
+            .iter()
+            .map(|p| p.thickness * (p.material.young / softest).max(1.0))
+            .sum::<f64>();
+        let e = 1e-6 / length;
+        let mut solver = LayeredSolver::new(&self.stack).expect("a validated stack");
+        let a = solver.plane_response(e, layer, z).stress;
+        let b = solver.plane_response(2.0 * e, layer, z).stress;
+        std::array::from_fn(|q| 2.0 * a[q] - b[q])
+    }
+
+    /// The long-wave in-plane stresses of the layer minus Love's, `(d_xi, d_eta)`:
+    /// zero in the half-space base.
+    fn long_wave_difference(&self, layer: usize, z: f64) -> (f64, f64) {
+        if layer == self.stack.layers.len() {
+            return (0.0, 0.0);
+        }
+        let t = self.transfer(0.0, layer, z);
+        let nu = self.material(layer).poisson;
+        (t[0] + 1.0, t[1] + 2.0 * nu)
+    }
+
+    /// The decay length of the difference from Love's at large k: the reflection
+    /// from the top layer's bottom (`2 h1 - z`) in the top layer, the depth below it.
+    fn decay_length(&self, layer: usize, z: f64) -> f64 {
+        if layer == 0 {
+            2.0 * self.top_thickness() - z
+        } else {
+            z
         }
     }
 
     /// The wave-frame transfer `[xixi, etaeta, zz, xiz / i]` at k minus Love's and
     /// the long-wave carrier `(d_xi, d_eta) e^{-k lambda}`.
-    fn difference(&self, side: Side, z: f64, carrier: (f64, f64, f64), k: f64) -> [f64; 4] {
-        let t = plane_stress_transfer(self.coating, self.thickness, self.substrate, k, z, side);
-        let nu = match side {
-            Side::Coating => self.coating.poisson,
-            Side::Substrate => self.substrate.poisson,
-        };
+    fn difference(&self, layer: usize, z: f64, carrier: (f64, f64, f64), k: f64) -> [f64; 4] {
+        let t = self.transfer(k, layer, z);
+        let nu = self.material(layer).poisson;
         let kz = k * z;
         let e = (-kz).exp();
         let love = [-(1.0 - kz) * e, -2.0 * nu * e, -(1.0 + kz) * e, kz * e];
@@ -231,21 +322,21 @@ fn slope_at_zero(f: impl Fn(f64) -> [f64; 4], step: f64) -> [f64; 4] {
     std::array::from_fn(|q| 2.0 * a[q] / step - b[q] / (2.0 * step))
 }
 
-impl CoatedStressKernels {
-    /// The method [`StressKernels::fill`] uses on `lattice`: the coating's half-space
-    /// when the lattice's diagonal is below `THICK_COATING` h1, the thin film when
-    /// the coating is thinner than a cell and the remainder is below `THIN_FILM` at
-    /// the grid's wavenumbers, the sub-cell split for other coatings thinner than a
-    /// cell, else the full expansion.
+impl LayeredStressKernels {
+    /// The method [`StressKernels::fill`] uses on `lattice`: the top layer's
+    /// half-space when the lattice's diagonal is below `THICK_COATING` h1, the thin
+    /// film when the stack is thinner than a cell and the remainder is below
+    /// `THIN_FILM` at the grid's wavenumbers, the sub-cell split for other top layers
+    /// thinner than a cell, else the full expansion.
     pub fn method(&self, lattice: &OffsetLattice) -> StressMethod {
         let diagonal = diagonal(lattice);
-        if diagonal < THICK_COATING * self.thickness {
+        if diagonal < THICK_COATING * self.top_thickness() {
             StressMethod::ThickCoating
-        } else if self.thickness < lattice.cell
+        } else if self.stack.thickness() < lattice.cell
             && self.remainder_at_grid_scale(lattice.cell) < THIN_FILM
         {
             StressMethod::ThinFilm
-        } else if self.thickness < lattice.cell {
+        } else if self.top_thickness() < lattice.cell {
             StressMethod::SubCell
         } else {
             StressMethod::Full
@@ -263,10 +354,7 @@ impl CoatedStressKernels {
     /// edge 1.6 windows deep in the paper's Fig. 11a on 32².)
     pub fn method_at(&self, z: f64, lattice: &OffsetLattice) -> StressMethod {
         let method = self.method(lattice);
-        let lambda = match self.side(z) {
-            Side::Coating => 2.0 * self.thickness - z,
-            Side::Substrate => z,
-        };
+        let lambda = self.decay_length(self.layer(z), z);
         if method == StressMethod::SubCell && lambda >= 0.5 * lattice.cell {
             StressMethod::Full
         } else {
@@ -289,12 +377,9 @@ impl CoatedStressKernels {
             self.fill_thick(z, lattice, table);
             return;
         }
-        let side = self.side(z);
-        let material = match side {
-            Side::Coating => self.coating,
-            Side::Substrate => self.substrate,
-        };
-        // 1. Love's kernels of the side's material.
+        let layer = self.layer(z);
+        let material = self.material(layer);
+        // 1. Love's kernels of the depth's material.
         HomogeneousStressKernels { material }.fill(z, lattice, table);
         // 2. Carriers of the difference's long-wave limit and of its slope at k = 0,
         // with transfers `e^{-k lambda}` and `k mu e^{-k mu}`. The slope's depth mu is
@@ -303,7 +388,7 @@ impl CoatedStressKernels {
         // sharp as lambda puts a large term on the loaded cell's edges that the
         // remainder must cancel with wavenumbers up to ~1 / lambda, more than its
         // capped alias sum holds (any depth takes up the slope exactly).
-        let (carrier, r1) = self.carriers(side, z);
+        let (carrier, r1) = self.carriers(layer, z);
         let (d_xi, d_eta, lambda) = carrier;
         let mu = if method == StressMethod::SubCell {
             lambda.max(lattice.cell)
@@ -357,7 +442,7 @@ impl CoatedStressKernels {
         }
         // 3. The remainder, O(k^2) at k = 0: its short waves by a periodic lattice
         // sum, its long waves by Hankel transforms.
-        let remainder = |k: f64| self.remainder(side, z, carrier, r1, mu, k);
+        let remainder = |k: f64| self.remainder(layer, z, carrier, r1, mu, k);
         if method == StressMethod::SubCell {
             self.add_sub_cell_remainder(lattice, lambda, z > 0.0, &remainder, table);
             return;
@@ -366,7 +451,7 @@ impl CoatedStressKernels {
         let short = remainder_on_lattice(
             lattice,
             lambda,
-            self.thickness,
+            self.stack.thickness(),
             k1,
             &remainder,
             Pass::Short {
@@ -455,7 +540,8 @@ impl CoatedStressKernels {
             y_first: lattice.y_first + y0 as f64,
             rows,
         };
-        let part = remainder_on_lattice(&near, lambda, self.thickness, k_hi, remainder, pass);
+        let part =
+            remainder_on_lattice(&near, lambda, self.stack.thickness(), k_hi, remainder, pass);
         for (t, s) in table.values.iter_mut().zip(part) {
             for r in 0..rows {
                 for c in 0..cols {
@@ -466,20 +552,17 @@ impl CoatedStressKernels {
     }
 }
 
-impl CoatedStressKernels {
+impl LayeredStressKernels {
     /// The long-wave carrier `(d_xi, d_eta, lambda)` at depth z on `side` (lambda: the
     /// decay length of the difference from Love's at large k) and the slope `r1` of
     /// the difference at k = 0.
-    fn carriers(&self, side: Side, z: f64) -> ((f64, f64, f64), [f64; 4]) {
-        let lambda = match side {
-            Side::Coating => 2.0 * self.thickness - z,
-            Side::Substrate => z,
-        };
-        let (d_xi, d_eta) = self.long_wave_difference(side);
+    fn carriers(&self, layer: usize, z: f64) -> ((f64, f64, f64), [f64; 4]) {
+        let lambda = self.decay_length(layer, z);
+        let (d_xi, d_eta) = self.long_wave_difference(layer, z);
         let carrier = (d_xi, d_eta, lambda);
         let r1 = slope_at_zero(
-            |k| self.difference(side, z, carrier, k),
-            1e-4 / (self.thickness + z),
+            |k| self.difference(layer, z, carrier, k),
+            1e-4 / (self.stack.thickness() + z),
         );
         (carrier, r1)
     }
@@ -488,14 +571,14 @@ impl CoatedStressKernels {
     /// both carriers (the slope's at depth `mu`), O(k^2) at k = 0.
     fn remainder(
         &self,
-        side: Side,
+        layer: usize,
         z: f64,
         carrier: (f64, f64, f64),
         r1: [f64; 4],
         mu: f64,
         k: f64,
     ) -> [f64; 4] {
-        let d = self.difference(side, z, carrier, k);
+        let d = self.difference(layer, z, carrier, k);
         let e = k * (-k * mu).exp();
         std::array::from_fn(|q| d[q] - r1[q] * e)
     }
@@ -507,16 +590,20 @@ impl CoatedStressKernels {
     /// `tests/coated_stress_limits.rs`.
     #[doc(hidden)]
     pub fn remainder_at_grid_scale(&self, cell: f64) -> f64 {
-        let h1 = self.thickness;
+        let n = self.stack.layers.len();
+        let elastic_base = matches!(self.stack.base, Base::HalfSpace(_));
+        let mut points = vec![(0.0, 0)];
+        for (i, z) in self.stack.interface_depths().into_iter().enumerate() {
+            points.push((z, i));
+            if i + 1 < n || elastic_base {
+                points.push((z, i + 1));
+            }
+        }
         let mut largest = 0.0f64;
-        for (z, side) in [
-            (0.0, Side::Coating),
-            (h1, Side::Coating),
-            (h1, Side::Substrate),
-        ] {
-            let (carrier, r1) = self.carriers(side, z);
+        for (z, layer) in points {
+            let (carrier, r1) = self.carriers(layer, z);
             for k in [1.0 / cell, PI / cell] {
-                for v in self.remainder(side, z, carrier, r1, carrier.2, k) {
+                for v in self.remainder(layer, z, carrier, r1, carrier.2, k) {
                     largest = largest.max(v.abs());
                 }
             }
@@ -538,12 +625,10 @@ impl CoatedStressKernels {
     /// h1 / 2 (far below the window) the whole kernel is the constant of the full
     /// transfer (to O((W / z)^2)); Love's corner sums would lose every digit there.
     fn fill_thick(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
-        let side = self.side(z);
-        let (material, nu) = match side {
-            Side::Coating => (self.coating, self.coating.poisson),
-            Side::Substrate => (self.substrate, self.substrate.poisson),
-        };
-        let h1 = self.thickness;
+        let layer = self.layer(z);
+        let material = self.material(layer);
+        let nu = material.poisson;
+        let h1 = self.top_thickness();
         let deep = z >= 0.5 * h1;
         if deep {
             table.lattice = Some(*lattice);
@@ -564,7 +649,7 @@ impl CoatedStressKernels {
             let lo = 0.25 * panel as f64;
             for (q, sum) in sums.iter_mut().enumerate() {
                 *sum += rule.integrate(lo, lo + 0.25, |t| {
-                    self.thick_mean(side, z, nu, deep, t / scale)[q] * t
+                    self.thick_mean(layer, z, nu, deep, t / scale)[q] * t
                 });
             }
         }
@@ -579,8 +664,8 @@ impl CoatedStressKernels {
 
     /// The angular means `[(xixi + etaeta) / 2, zz]` of the transfer at k (deep), or of
     /// its difference from Love's.
-    fn thick_mean(&self, side: Side, z: f64, nu: f64, deep: bool, k: f64) -> [f64; 2] {
-        let t = plane_stress_transfer(self.coating, self.thickness, self.substrate, k, z, side);
+    fn thick_mean(&self, layer: usize, z: f64, nu: f64, deep: bool, k: f64) -> [f64; 2] {
+        let t = self.transfer(k, layer, z);
         let (love_in_plane, love_zz) = if deep {
             (0.0, 0.0)
         } else {
@@ -592,7 +677,7 @@ impl CoatedStressKernels {
     }
 }
 
-impl StressKernels for CoatedStressKernels {
+impl StressKernels for LayeredStressKernels {
     fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
         self.fill_with(z, lattice, table, self.method_at(z, lattice));
     }
