@@ -14,12 +14,13 @@
 //! K2 = 2, A = 0.8, H = 1.0, is reprinted (Jones's factors, five decimals) in
 //! Y. H. Huang, "Pavement Analysis and Design", 2nd ed., Pearson Prentice Hall
 //! (2004), Table 2.3, and used in its Example 2.11 (a = 4.8 in, q = 120 psi,
-//! h1 = h2 = 6 in, E1 = 400,000, E2 = 20,000, E3 = 10,000 psi), which prints
-//! sigma_z1 = 120 x 0.12173 = 14.61 psi, sigma_z2 = 120 x 0.05938 = 7.12 psi and
-//! sigma_z1 - sigma_r1 = 120 x 1.97428 = 236.91 psi. The four factors were read from
-//! a public transcription of Huang's Table 2.3 (the acceptance test
+//! h1 = h2 = 6 in, E1 = 400,000, E2 = 20,000, E3 = 10,000 psi), which gives
+//! sigma_z1 = 14.61 psi, sigma_z2 = 7.12 psi and sigma_z1 - sigma_r1 = 236.91 psi
+//! (120 x 0.12173, 120 x 0.05938, 120 x 1.97428). Neither Jones's paper nor the book
+//! was reachable here: the four factors and the example's numbers were read from a
+//! public transcription of Huang's Table 2.3 and Example 2.11 (the acceptance test
 //! `src/components/react/lea/threeLayer.test.mjs` of the GitHub repository
-//! `ictuillinois/CEE-406`), and checked against the example's printed stresses.
+//! `ictuillinois/CEE-406`), and the example's stresses agree with the factors.
 //! Jones states that the vertical stresses "are accurate to within 1 percent"; the
 //! factors are printed to 1e-5.
 //!
@@ -142,7 +143,7 @@ const HALF_UNIT: f64 = 5e-6;
 /// H = 1.0 (module doc). ZZ1, ZZ2 and ZZ2 - RR2 agree within half a unit of the last
 /// printed digit. ZZ1 - RR1 does not: the converged value is 1.974308, 2.8 units of
 /// the fifth decimal (1.4e-5 relative) above the printed 1.97428, which Huang's
-/// example confirms (120 x 1.97428 = 236.91 psi, where 1.974308 would give 236.92).
+/// example, as transcribed, agrees with (120 x 1.97428 = 236.91 psi; 1.974308 gives 236.92).
 /// It is held to Jones's stated accuracy, 1 percent.
 const JONES: [Row; 1] = [Row {
     k1: 20.0,
