@@ -743,3 +743,155 @@ fn a_box_spectrum_parses_and_rejects_the_keys_it_does_not_take() {
     );
     assert!(matches!(e, Error::Parse(_)), "{e:?}");
 }
+
+/// Hertz's case with its `[substrate]` replaced by `body`.
+fn with_body(body: &str) -> String {
+    let substrate = "[substrate]\nyoung = 1.0\npoisson = 0.3\n";
+    assert!(HERTZ.contains(substrate), "the shared case changed");
+    HERTZ.replace(substrate, body)
+}
+
+const TWO_LAYERS: &str = "[[body.layers]]\nyoung = 3.0\npoisson = 0.25\nthickness = 0.01\n\
+                          [[body.layers]]\nyoung = 0.5\npoisson = 0.45\nthickness = 0.02\n";
+
+#[test]
+fn stacks_parse_on_a_half_space_and_on_a_rigid_base() {
+    use crate::body::layered::{Base, BaseContact, Ply, Stack};
+    let layers = vec![
+        Ply {
+            material: Elastic {
+                young: 3.0,
+                poisson: 0.25,
+            },
+            thickness: 0.01,
+        },
+        Ply {
+            material: Elastic {
+                young: 0.5,
+                poisson: 0.45,
+            },
+            thickness: 0.02,
+        },
+    ];
+    let on_half_space = parse(&with_body(&format!(
+        "[substrate]\nyoung = 1.0\npoisson = 0.3\n{TWO_LAYERS}"
+    )))
+    .unwrap();
+    assert_eq!(
+        on_half_space.case.body,
+        Body::Layered(Stack {
+            layers: layers.clone(),
+            base: Base::HalfSpace(Elastic {
+                young: 1.0,
+                poisson: 0.3
+            }),
+        })
+    );
+    for (word, contact) in [
+        ("bonded", BaseContact::Bonded),
+        ("frictionless", BaseContact::Frictionless),
+    ] {
+        let rigid = parse(&with_body(&format!(
+            "[body]\nbase = \"rigid\"\nbonding = \"{word}\"\n{TWO_LAYERS}"
+        )))
+        .unwrap();
+        assert_eq!(
+            rigid.case.body,
+            Body::Layered(Stack {
+                layers: layers.clone(),
+                base: Base::Rigid(contact),
+            })
+        );
+    }
+    for example in [
+        include_str!("../../../examples/three_layer_coating.toml"),
+        include_str!("../../../examples/polymer_liner_rigid.toml"),
+    ] {
+        assert!(matches!(
+            parse(example).unwrap().case.body,
+            Body::Layered(_)
+        ));
+    }
+}
+
+#[test]
+fn bad_stacks_name_the_field_in_one_line() {
+    let substrate = "[substrate]\nyoung = 1.0\npoisson = 0.3\n";
+    let rigid = "[body]\nbase = \"rigid\"\nbonding = \"bonded\"\n";
+    for (body, parts) in [
+        // No layers.
+        (
+            "[body]\nbase = \"rigid\"\nbonding = \"bonded\"\n".to_string(),
+            &["body.layers", "at least one"][..],
+        ),
+        (format!("{substrate}[body]\n"), &["body.layers"][..]),
+        // A non-positive thickness, a missing one, nu out of range, a bad modulus.
+        (
+            format!(
+                "{rigid}{}",
+                TWO_LAYERS.replace("thickness = 0.02", "thickness = 0")
+            ),
+            &["body.layers[1].thickness", "> 0"][..],
+        ),
+        (
+            format!("{rigid}{}", TWO_LAYERS.replace("thickness = 0.02\n", "")),
+            &["body.layers[1].thickness"][..],
+        ),
+        (
+            format!(
+                "{rigid}{}",
+                TWO_LAYERS.replace("poisson = 0.45", "poisson = 0.5")
+            ),
+            &["body.layers[1].poisson", "poisson < 0.5"][..],
+        ),
+        (
+            format!(
+                "{rigid}{}",
+                TWO_LAYERS.replace("young = 3.0", "young = -3.0")
+            ),
+            &["body.layers[0].young"][..],
+        ),
+        // A rigid base needs its bonding and has no substrate; a half-space has no
+        // bonding; a [coating] is not given alongside [[body.layers]].
+        (
+            format!("[body]\nbase = \"rigid\"\n{TWO_LAYERS}"),
+            &["body.bonding", "bonded", "frictionless"][..],
+        ),
+        (
+            format!("{substrate}{rigid}{TWO_LAYERS}"),
+            &["substrate", "rigid base"][..],
+        ),
+        (
+            format!("{substrate}[body]\nbonding = \"bonded\"\n{TWO_LAYERS}"),
+            &["body.bonding"][..],
+        ),
+        (
+            format!(
+                "{substrate}[coating]\nyoung = 3.0\npoisson = 0.3\nthickness = 0.01\n{TWO_LAYERS}"
+            ),
+            &["coating", "[[body.layers]]"][..],
+        ),
+        // A base that is not a base.
+        (
+            format!("[body]\nbase = \"granite\"\nbonding = \"bonded\"\n{TWO_LAYERS}"),
+            &["base"][..],
+        ),
+        // A rigid layer (an infinite modulus) on a rigid base.
+        (
+            format!(
+                "{rigid}{}",
+                TWO_LAYERS.replace("young = 3.0", "young = inf")
+            ),
+            &["body.layers[0].young", "finite"][..],
+        ),
+    ] {
+        error_naming(&with_body(&body), parts);
+    }
+    // A coating keeps its own names.
+    error_naming(
+        &with_body(&format!(
+            "{substrate}[coating]\nyoung = 3.0\npoisson = 0.3\nthickness = 0\n"
+        )),
+        &["coating.thickness"],
+    );
+}

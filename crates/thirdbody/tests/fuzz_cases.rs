@@ -26,13 +26,15 @@ fn count(k: usize) {
 }
 use thirdbody::{solve, SolverParams};
 
-const EXAMPLES: [&str; 6] = [
+const EXAMPLES: [&str; 8] = [
     include_str!("../../../examples/paper_fig3.toml"),
     include_str!("../../../examples/hertz.toml"),
     include_str!("../../../examples/ellipsoid_si.toml"),
     include_str!("../../../examples/paper_fig7.toml"),
     include_str!("../../../examples/paper_fig10a.toml"),
     include_str!("../../../examples/paper_fig12b_thick_coating.toml"),
+    include_str!("../../../examples/three_layer_coating.toml"),
+    include_str!("../../../examples/polymer_liner_rigid.toml"),
 ];
 
 /// Values a hostile user might write in place of a number.
@@ -48,6 +50,12 @@ fn wild_value() -> impl Strategy<Value = String> {
         Just("\"text\"".to_string()),
         Just("[1, 2, 3]".to_string()),
         Just("true".to_string()),
+        // The body's words, in any key: a base or bonding where it does not belong.
+        Just("\"rigid\"".to_string()),
+        Just("\"half_space\"".to_string()),
+        Just("\"frictionless\"".to_string()),
+        Just("\"bonded\"".to_string()),
+        Just("0.4999999".to_string()),
         Just("99999999999999999999".to_string()),
         (-300i32..300).prop_map(|e| format!("1e{e}")),
         any::<f64>().prop_map(|v| format!("{v:e}")),

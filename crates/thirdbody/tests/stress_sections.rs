@@ -311,3 +311,72 @@ fn observed_stresses_count_every_plane_and_equal_the_unobserved_ones() {
     let plain = request.compute(&body, &grid, &p).unwrap();
     assert_eq!(observed.sections, plain.sections);
 }
+
+#[test]
+fn layered_requests_name_the_interface_and_the_rigid_base() {
+    use thirdbody::body::layered::{Base, BaseContact, Ply, Stack};
+    use thirdbody::stress::Side;
+    let grid = Grid::centred(16, 16, 0.1, [0.0, 0.0]).unwrap();
+    let p = patch(&grid);
+    let ply = |thickness: f64| Ply {
+        material: MAT,
+        thickness,
+    };
+    // Two layers on a half-space: interfaces 0 and 1; index 2 does not exist.
+    let on_half_space = Body::Layered(Stack {
+        layers: vec![ply(0.1), ply(0.2)],
+        base: Base::HalfSpace(Elastic {
+            young: 1.0,
+            poisson: 0.3,
+        }),
+    });
+    for index in [0, 1] {
+        let section = Section::Interface {
+            index,
+            side: Side::Below,
+        };
+        let f = stresses(&grid, &p, &on_half_space, &section).unwrap();
+        assert!((f.zs[0] - [0.1, 0.3][index]).abs() < 1e-15, "{:?}", f.zs);
+    }
+    let e = stresses(
+        &grid,
+        &p,
+        &on_half_space,
+        &Section::Interface {
+            index: 2,
+            side: Side::Above,
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("stress.interface") && e.contains("0 to 1"),
+        "{e}"
+    );
+    // On a rigid base the base's face is no interface, and nothing lies below it.
+    let on_rigid = Body::Layered(Stack {
+        layers: vec![ply(0.1), ply(0.2)],
+        base: Base::Rigid(BaseContact::Bonded),
+    });
+    let e = stresses(
+        &grid,
+        &p,
+        &on_rigid,
+        &Section::Interface {
+            index: 1,
+            side: Side::Above,
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("stress.interface") && e.contains("0 to 0"),
+        "{e}"
+    );
+    let e = stresses(&grid, &p, &on_rigid, &Section::Plane { z: 0.31 })
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("rigid base") && !e.contains('\n'), "{e}");
+    let at_base = stresses(&grid, &p, &on_rigid, &Section::Plane { z: 0.3 }).unwrap();
+    assert!(at_base.components.iter().flatten().all(|v| v.is_finite()));
+}
