@@ -655,3 +655,56 @@ fn a_stress_section_in_the_base_case_adds_stress_columns() {
         serde_json::from_str(&fs::read_to_string(solved.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["stress"]["tau1_max"].as_f64().unwrap(), tau[1]);
 }
+
+#[test]
+fn a_sweep_varies_one_layer_of_a_stack() {
+    // The polymer liner on its rigid backing, thinner and thinner: a thinner liner
+    // on a rigid base is stiffer, so the same load presses the ball in less.
+    let dir = tempfile::tempdir().unwrap();
+    let text = fs::read_to_string(examples().join("polymer_liner_rigid.toml"))
+        .unwrap()
+        .replace("cells = [128, 128]", "cells = [32, 32]")
+        .replace("[stress]\n", "");
+    let case = write_case(dir.path(), &text);
+    let out = dir.path().join("sweep");
+    let run = thirdbody(&[
+        "sweep",
+        case.to_str().unwrap(),
+        "--vary",
+        "body.layers[0].thickness=0.1e-3,0.3e-3,1e-3",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let rows = read_results(&out);
+    assert_eq!(rows.len(), 3);
+    let depth = |thickness: &str| -> f64 {
+        rows.iter()
+            .find(|r| {
+                r["body.layers[0].thickness"].parse::<f64>().unwrap()
+                    == thickness.parse::<f64>().unwrap()
+            })
+            .unwrap_or_else(|| panic!("{thickness} missing: {rows:?}"))["penetration"]
+            .parse()
+            .unwrap()
+    };
+    let (thin, mid, thick) = (depth("0.1e-3"), depth("0.3e-3"), depth("1e-3"));
+    assert!(thin < mid && mid < thick, "{thin} {mid} {thick}");
+    // A key of a layer the stack does not have is refused before anything runs.
+    let run = thirdbody(&[
+        "sweep",
+        case.to_str().unwrap(),
+        "--vary",
+        "body.layers[3].thickness=1e-3,2e-3",
+        "--out",
+        dir.path().join("bad").to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("body.layers[3].thickness"), "{stderr}");
+}
