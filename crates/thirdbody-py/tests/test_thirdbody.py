@@ -507,3 +507,33 @@ def test_a_height_map_case_keeps_its_folder_when_the_working_directory_changes(t
     # The sphere's own solve; Hertz's D = 2.267e-4 (examples/hertz.toml) as well.
     assert math.isclose(mapped["penetration"], sphere.summary["penetration"], rel_tol=1e-3)
     assert math.isclose(mapped["max_pressure"], sphere.summary["max_pressure"], rel_tol=2e-3)
+
+
+def test_a_stack_from_sections_its_layer_varied_and_its_interfaces():
+    # The three-layer example built from Python dicts ([[body.layers]] is a list of
+    # dicts), one layer varied by its indexed key, and every interface's stresses by
+    # index: sigma_z is continuous across each, sigma_x is not.
+    import tomllib
+
+    text = (ROOT / "examples" / "three_layer_coating.toml").read_text()
+    text = text.replace("cells = [128, 128]", "cells = [48, 48]")
+    sections = tomllib.loads(text)
+    assert len(sections["body"]["layers"]) == 3
+    case = thirdbody.Case(**sections)
+    assert case.case_hash == thirdbody.Case.from_toml(text).case_hash
+    thicker = case.with_({"body.layers[1].thickness": 0.004})
+    assert thicker.case_hash != case.case_hash
+    solution = thirdbody.solve(case)
+    stress = solution.summary["stress"]
+    assert [i["index"] for i in stress["interfaces"]] == [0, 1, 2]
+    assert [l["index"] for l in stress["layers"]] == [0, 1, 2, 3] and stress["layers"][3]["base"]
+    for index in range(3):
+        above = solution.stresses("interface", interface=index, side="above")
+        below = solution.stresses("interface", interface=index, side="below")
+        peak = np.abs(above["sigma_z"]).max()
+        assert np.abs(above["sigma_z"] - below["sigma_z"]).max() < 1e-8 * peak
+        assert np.abs(above["sigma_x"] - below["sigma_x"]).max() > 1e-3 * peak
+    with pytest.raises(ValueError, match="stress.interface"):
+        solution.stresses("interface", interface=3)
+    with pytest.raises(ValueError, match="side"):
+        solution.stresses("interface", side="middle")
