@@ -1,0 +1,141 @@
+//! Consistency of layered bodies through the whole solve (surface kernel, solver,
+//! summary): a stack of layers of the substrate's material is the homogeneous body;
+//! a layer split into two of the same material changes nothing; a layer whose
+//! thickness goes to 0 disappears, its effect falling linearly with the thickness.
+//! Each on a fixed 32 x 32 window, with and without the paper's nonlinear layer.
+
+use thirdbody::body::layered::{Base, Ply, Stack};
+use thirdbody::case_file::parse_case_file;
+use thirdbody::{solve, Body, Case, Elastic, GridSpec, Loading, Slider, Solution, SolverParams};
+
+const SUBSTRATE: Elastic = Elastic {
+    young: 1.0,
+    poisson: 0.3,
+};
+
+fn case(body: Body, layered: bool) -> Case {
+    let layer = layered.then(|| {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/paper_fig12a_thin_coating.toml"
+        ))
+        .unwrap();
+        parse_case_file(&text, &mut |_, _| unreachable!())
+            .unwrap()
+            .case
+            .layer
+            .unwrap()
+    });
+    Case {
+        slider: Slider::Sphere { radius: 1.0 },
+        body,
+        layer,
+        loading: Loading {
+            normal_load: 5e-6,
+            velocity: layered.then_some(1e-3),
+        },
+        grid: GridSpec {
+            cells: [32, 32],
+            half_width: Some([0.06, 0.06]),
+            centre: Some([0.0, 0.0]),
+        },
+        units: thirdbody::Units::Dimensionless,
+    }
+}
+
+fn stack(layers: &[(Elastic, f64)]) -> Body {
+    Body::Layered(Stack {
+        layers: layers
+            .iter()
+            .map(|&(material, thickness)| Ply {
+                material,
+                thickness,
+            })
+            .collect(),
+        base: Base::HalfSpace(SUBSTRATE),
+    })
+}
+
+fn solved(body: Body, layered: bool) -> Solution {
+    solve(&case(body, layered), &SolverParams::default()).unwrap()
+}
+
+/// The largest pressure difference over the peak, and the friction's difference.
+fn difference(a: &Solution, b: &Solution) -> (f64, f64) {
+    let peak = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+    let dp = a
+        .pressure
+        .iter()
+        .zip(&b.pressure)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    let dmu = (a.summary().friction_coefficient - b.summary().friction_coefficient).abs();
+    (dp / peak, dmu)
+}
+
+#[test]
+fn layers_of_the_substrate_material_are_the_homogeneous_body() {
+    for layered in [false, true] {
+        let homogeneous = solved(Body::Homogeneous(SUBSTRATE), layered);
+        let layers = solved(
+            stack(&[(SUBSTRATE, 0.003), (SUBSTRATE, 0.01), (SUBSTRATE, 0.5)]),
+            layered,
+        );
+        let (dp, dmu) = difference(&layers, &homogeneous);
+        eprintln!("identical layers, layer {layered}: pressure {dp:.1e}, mu {dmu:.1e}");
+        assert!(dp < 1e-12 && dmu < 1e-12, "{dp:.1e} {dmu:.1e}");
+    }
+}
+
+#[test]
+fn splitting_a_layer_into_two_of_its_material_changes_nothing() {
+    let (a, b) = (
+        Elastic {
+            young: 3.0,
+            poisson: 0.25,
+        },
+        Elastic {
+            young: 0.4,
+            poisson: 0.45,
+        },
+    );
+    for layered in [false, true] {
+        let whole = solved(stack(&[(a, 0.01), (b, 0.005)]), layered);
+        let split = solved(stack(&[(a, 0.004), (a, 0.006), (b, 0.005)]), layered);
+        let (dp, dmu) = difference(&split, &whole);
+        eprintln!("split layer, layer {layered}: pressure {dp:.1e}, mu {dmu:.1e}");
+        assert!(dp < 1e-10 && dmu < 1e-10, "{dp:.1e} {dmu:.1e}");
+    }
+}
+
+#[test]
+fn a_vanishing_layer_disappears_linearly() {
+    let (stiff, soft) = (
+        Elastic {
+            young: 10.0,
+            poisson: 0.2,
+        },
+        Elastic {
+            young: 0.5,
+            poisson: 0.4,
+        },
+    );
+    // The difference is linear in t with a second-order term (the stiff film's
+    // membrane length, 20 t, against the contact): the ratio of successive halvings
+    // must approach 2, its distance from 2 halving with t.
+    let without = solved(stack(&[(soft, 0.005)]), true);
+    let mut last: Option<f64> = None;
+    let mut gaps = Vec::new();
+    for t in [8e-6, 4e-6, 2e-6, 1e-6] {
+        let with = solved(stack(&[(stiff, t), (soft, 0.005)]), true);
+        let (dp, _) = difference(&with, &without);
+        eprintln!("top layer {t:e} thick: pressure {dp:.3e} of the peak");
+        if let Some(previous) = last {
+            let ratio = previous / dp;
+            eprintln!("  ratio {ratio:.4}");
+            gaps.push((ratio - 2.0).abs());
+        }
+        last = Some(dp);
+    }
+    assert!(gaps.windows(2).all(|g| g[1] < 0.7 * g[0]), "{gaps:?}");
+    assert!(gaps[gaps.len() - 1] < 0.05, "{gaps:?}");
+}
