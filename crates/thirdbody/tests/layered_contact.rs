@@ -139,3 +139,43 @@ fn a_vanishing_layer_disappears_linearly() {
     assert!(gaps.windows(2).all(|g| g[1] < 0.7 * g[0]), "{gaps:?}");
     assert!(gaps[gaps.len() - 1] < 0.05, "{gaps:?}");
 }
+
+#[test]
+fn a_near_incompressible_layer_on_a_rigid_base_carries_the_load_to_the_base() {
+    // Equilibrium: every plane z = const carries the whole load, the integral of
+    // sigma_z over it is -Q. A layer of nu 0.45, 0.49 and 0.499 bonded (or sliding
+    // without friction) on a rigid base, the contact radius about the layer's
+    // thickness. A bonded layer spreads the load on the base over several
+    // thicknesses (one cell's sigma_z there sums to 1 - 3.7e-3 over +-6 h, 1 - 3.5e-5
+    // over +-12 h), so the window reaches 15 h.
+    use thirdbody::body::layered::BaseContact;
+    use thirdbody::stress::Section;
+    for poisson in [0.45, 0.49, 0.499] {
+        for contact in [BaseContact::Bonded, BaseContact::Frictionless] {
+            let body = Body::Layered(Stack {
+                layers: vec![Ply {
+                    material: Elastic {
+                        young: 1.0,
+                        poisson,
+                    },
+                    thickness: 0.02,
+                }],
+                base: Base::Rigid(contact),
+            });
+            let mut c = case(body, false);
+            c.loading.normal_load = 2e-5;
+            c.grid.half_width = Some([0.3, 0.3]);
+            c.grid.cells = [64, 64];
+            let s = solve(&c, &SolverParams::default()).unwrap();
+            let area = s.grid.cell() * s.grid.cell();
+            for z in [0.0, 0.01, 0.02] {
+                let f = s.stresses(&Section::Plane { z }).unwrap();
+                let force: f64 = f.components[2].iter().sum::<f64>() * area;
+                let e = (force / -2e-5 - 1.0).abs();
+                eprintln!("nu {poisson}, {contact:?}, z = {z}: load carried {e:.1e}");
+                assert!(f.components.iter().flatten().all(|v| v.is_finite()));
+                assert!(e < 2e-4, "nu {poisson}, {contact:?}, z = {z}: {e:.1e}");
+            }
+        }
+    }
+}
