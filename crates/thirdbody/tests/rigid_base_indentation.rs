@@ -208,9 +208,9 @@ fn nearly_incompressible_layers_match_the_exact_solution() {
     check(&[0.49, 0.499]);
 }
 
-/// The default grid is converged to the tolerance: finer grids (192 x 192 and
-/// 256 x 256) move f by less than the tolerance, on the stiffest case (bonded,
-/// nu = 0.499, chi = 0.6).
+/// The default grid is converged: finer grids (192 x 192 and 256 x 256) also match
+/// the exact f, on the stiffest case (bonded, nu = 0.499, chi = 0.6); their change
+/// from the default grid is printed (not asserted: both are solver outputs).
 #[test]
 fn finer_grids_confirm_the_default_one() {
     let case = EXACT
@@ -218,6 +218,7 @@ fn finer_grids_confirm_the_default_one() {
         .find(|c| c.0 && c.1 == 0.499 && c.2 == 0.6)
         .unwrap();
     let default = indent(case, 128);
+    assert!((default.f / case.6 - 1.0).abs() < TOLERANCE);
     for cells in [192, 256] {
         let fine = indent(case, cells);
         eprintln!(
@@ -233,6 +234,5 @@ fn finer_grids_confirm_the_default_one() {
             default.radius / case.3,
         );
         assert!((fine.f / case.6 - 1.0).abs() < TOLERANCE);
-        assert!((fine.f / default.f - 1.0).abs() < TOLERANCE);
     }
 }
