@@ -5,8 +5,9 @@
 //! Each on a fixed 32 x 32 window, with and without the paper's nonlinear layer.
 
 use thirdbody::body::layered::{Base, Ply, Stack};
-use thirdbody::case_file::parse_case_file;
-use thirdbody::{solve, Body, Case, Elastic, GridSpec, Loading, Slider, Solution, SolverParams};
+mod cases;
+
+use thirdbody::{solve, Body, Case, Elastic, Solution, SolverParams};
 
 const SUBSTRATE: Elastic = Elastic {
     young: 1.0,
@@ -14,33 +15,7 @@ const SUBSTRATE: Elastic = Elastic {
 };
 
 fn case(body: Body, layered: bool) -> Case {
-    let layer = layered.then(|| {
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../examples/paper_fig12a_thin_coating.toml"
-        ))
-        .unwrap();
-        parse_case_file(&text, &mut |_, _| unreachable!())
-            .unwrap()
-            .case
-            .layer
-            .unwrap()
-    });
-    Case {
-        slider: Slider::Sphere { radius: 1.0 },
-        body,
-        layer,
-        loading: Loading {
-            normal_load: 5e-6,
-            velocity: layered.then_some(1e-3),
-        },
-        grid: GridSpec {
-            cells: [32, 32],
-            half_width: Some([0.06, 0.06]),
-            centre: Some([0.0, 0.0]),
-        },
-        units: thirdbody::Units::Dimensionless,
-    }
+    cases::on_fixed_window(body, layered, 32)
 }
 
 fn stack(layers: &[(Elastic, f64)]) -> Body {

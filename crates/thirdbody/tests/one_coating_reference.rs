@@ -11,45 +11,21 @@
 //! included) and two rows of the surface, both interface sides and a plane below.
 
 use serde_json::Value;
-use thirdbody::case_file::parse_case_file;
 use thirdbody::stress::{Section, Side};
-use thirdbody::{solve, Body, Case, Elastic, GridSpec, Loading, Slider, SolverParams, Units};
+mod cases;
+
+use thirdbody::{solve, Body, Case, Elastic, SolverParams};
 
 fn case(ratio: f64, thickness: f64, layered: bool) -> Case {
-    let layer = layered.then(|| {
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../examples/paper_fig12a_thin_coating.toml"
-        ))
-        .unwrap();
-        let file = parse_case_file(&text, &mut |_, _| unreachable!()).unwrap();
-        file.case.layer.unwrap()
-    });
-    Case {
-        slider: Slider::Sphere { radius: 1.0 },
-        body: Body::coated(
-            Elastic {
-                young: ratio,
-                poisson: 0.25,
-            },
-            thickness,
-            Elastic {
-                young: 1.0,
-                poisson: 0.3,
-            },
-        ),
-        layer,
-        loading: Loading {
-            normal_load: 5e-6,
-            velocity: layered.then_some(1e-3),
-        },
-        grid: GridSpec {
-            cells: [32, 32],
-            half_width: Some([0.06, 0.06]),
-            centre: Some([0.0, 0.0]),
-        },
-        units: Units::Dimensionless,
-    }
+    let coating = Elastic {
+        young: ratio,
+        poisson: 0.25,
+    };
+    let substrate = Elastic {
+        young: 1.0,
+        poisson: 0.3,
+    };
+    cases::on_fixed_window(Body::coated(coating, thickness, substrate), layered, 32)
 }
 
 fn numbers(v: &Value) -> Vec<f64> {

@@ -27,6 +27,34 @@ pub fn sphere(load: f64, cells: usize) -> Case {
     }
 }
 
+/// The paper's nonlinear layer of Figs. 7-12: C' = 0.02, T = 1, sigmoid law
+/// delta = 0.5, p0' = 0.005, exact integration (`examples/paper_fig12a_thin_coating.toml`).
+pub fn paper_sigmoid_layer() -> Layer {
+    Layer::maxwell(
+        0.02,
+        1.0,
+        ComplianceLaw::Sigmoid {
+            delta: 0.5,
+            p0: 0.005,
+        },
+        Integration::Exact,
+    )
+}
+
+/// `body` under the paper's sphere (Q' = 5e-6) on a fixed window of `cells` over
+/// 0.12 R, with the paper's nonlinear layer at V' = 1e-3 when `layered`.
+pub fn on_fixed_window(body: Body, layered: bool, cells: usize) -> Case {
+    let mut c = sphere(5e-6, cells);
+    c.body = body;
+    c.grid.half_width = Some([0.06, 0.06]);
+    c.grid.centre = Some([0.0, 0.0]);
+    if layered {
+        c.layer = Some(paper_sigmoid_layer());
+        c.loading.velocity = Some(1e-3);
+    }
+    c
+}
+
 /// A Maxwell layer of compliance C0 with a law and an integration.
 pub fn layered(
     load: f64,
