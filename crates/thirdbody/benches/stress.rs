@@ -1,10 +1,12 @@
 //! Subsurface-stress speed: the XZ section of 256 points
 //! along x by 128 depths under a 256 x 256 Hertz pressure field, and a
-//! 128 x 128 x 64 block.
+//! 128 x 128 x 64 block; the same XZ section of coated bodies and of stacks of
+//! three and five layers.
 
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use thirdbody::body::layered::{Base, Ply, Stack};
 use thirdbody::stress::{stresses, Section};
 use thirdbody::{Body, Elastic, Grid};
 
@@ -72,6 +74,38 @@ fn bench(c: &mut Criterion) {
         };
         group.bench_function(format!("coated_{name}_interface_256x256"), |b| {
             b.iter(|| black_box(stresses(&grid, &p, &coated, &interface).unwrap()))
+        });
+    }
+
+    // Stacks of three and five layers on a half-space (E from 0.5 to 4, total
+    // thickness a / 2 and a, layers from a / 40 to a / 4), the XZ section as above.
+    let elastic = |young| Elastic {
+        young,
+        poisson: 0.3,
+    };
+    let stack = |plies: &[(f64, f64)]| {
+        Body::Layered(Stack {
+            layers: plies
+                .iter()
+                .map(|&(young, thickness)| Ply {
+                    material: elastic(young),
+                    thickness,
+                })
+                .collect(),
+            base: Base::HalfSpace(elastic(1.0)),
+        })
+    };
+    let three = stack(&[(3.0, 0.025), (0.5, 0.225), (2.0, 0.25)]);
+    let five = stack(&[
+        (4.0, 0.025),
+        (1.5, 0.1),
+        (0.5, 0.125),
+        (2.0, 0.25),
+        (3.0, 0.5),
+    ]);
+    for (name, body) in [("three", three), ("five", five)] {
+        group.bench_function(format!("layers_{name}_xz_256x128_from_256x256"), |b| {
+            b.iter(|| black_box(stresses(&grid, &p, &body, &xz).unwrap()))
         });
     }
     group.finish();

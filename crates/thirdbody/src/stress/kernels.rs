@@ -214,22 +214,54 @@ impl StressKernels for HomogeneousStressKernels {
 
     fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
         let nu = self.material.poisson;
-        let (cols, rows, h) = (lattice.cols, lattice.rows, lattice.cell);
-        // Corner primitives on the distinct |u| x |v| (each corner is shared by up to
-        // four cells, and the primitives have a parity in u and in v), stored
-        // component-major.
-        let (us, umap) = folded_corners(lattice.x_first, cols, h);
-        let (vs, vmap) = folded_corners(lattice.y_first, rows, h);
-        let nu_ = us.len();
-        let mut prim: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; nu_ * vs.len()]);
-        for (q, &v) in vs.iter().enumerate() {
-            for (p, &u) in us.iter().enumerate() {
-                let g = corner_primitives(u, v, z, nu);
-                for (dst, val) in prim.iter_mut().zip(g) {
+        let corners = FoldedCorners::new(lattice);
+        let prim = corners.primitives(|u, v| corner_primitives(u, v, z, nu));
+        corners.difference(&prim, lattice, table);
+    }
+}
+
+/// The distinct corner coordinates `|u| x |v|` of a lattice's cells (each corner is
+/// shared by up to four cells, and the primitives have a parity in u and in v).
+struct FoldedCorners {
+    us: Vec<f64>,
+    umap: Vec<(usize, f64)>,
+    vs: Vec<f64>,
+    vmap: Vec<(usize, f64)>,
+}
+
+impl FoldedCorners {
+    fn new(lattice: &OffsetLattice) -> Self {
+        let (us, umap) = folded_corners(lattice.x_first, lattice.cols, lattice.cell);
+        let (vs, vmap) = folded_corners(lattice.y_first, lattice.rows, lattice.cell);
+        FoldedCorners { us, umap, vs, vmap }
+    }
+
+    /// The primitives `g(u, v)` at the distinct corners, component-major.
+    fn primitives(&self, g: impl Fn(f64, f64) -> [f64; COMPONENTS]) -> [Vec<f64>; COMPONENTS] {
+        let nu_ = self.us.len();
+        let mut prim: [Vec<f64>; COMPONENTS] =
+            std::array::from_fn(|_| vec![0.0; nu_ * self.vs.len()]);
+        for (q, &v) in self.vs.iter().enumerate() {
+            for (p, &u) in self.us.iter().enumerate() {
+                for (dst, val) in prim.iter_mut().zip(g(u, v)) {
                     dst[q * nu_ + p] = val;
                 }
             }
         }
+        prim
+    }
+
+    /// The four-corner sums of the primitives `prim` (of [`Self::primitives`]) into
+    /// `table`.
+    fn difference(
+        &self,
+        prim: &[Vec<f64>; COMPONENTS],
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+    ) {
+        let (cols, rows) = (lattice.cols, lattice.rows);
+        let (us, umap, vmap) = (&self.us, &self.umap, &self.vmap);
+        let nu_ = us.len();
         // x offsets symmetric about 0 (the usual case): the kernel row is built for
         // x >= 0 from consecutive folded corners and mirrored with its parity
         // (a primitive odd in u gives a kernel even in x and vice versa).
@@ -277,6 +309,86 @@ impl StressKernels for HomogeneousStressKernels {
     }
 }
 
+impl HomogeneousStressKernels {
+    /// Love's kernels are linear in nu: fills `base` with those of nu = 0 and
+    /// `slope` with their derivative in nu (the corner primitives are evaluated
+    /// once for both).
+    pub(crate) fn fill_poisson_split(
+        z: f64,
+        lattice: &OffsetLattice,
+        base: &mut InfluenceTable,
+        slope: &mut InfluenceTable,
+    ) {
+        let corners = FoldedCorners::new(lattice);
+        let both = corners.primitives2(|u, v| corner_primitives_split(u, v, z));
+        corners.difference(&both.0, lattice, base);
+        corners.difference(&both.1, lattice, slope);
+    }
+}
+
+impl FoldedCorners {
+    /// [`Self::primitives`] of two primitive sets evaluated together.
+    #[allow(clippy::type_complexity)]
+    fn primitives2(
+        &self,
+        g: impl Fn(f64, f64) -> ([f64; COMPONENTS], [f64; COMPONENTS]),
+    ) -> ([Vec<f64>; COMPONENTS], [Vec<f64>; COMPONENTS]) {
+        let nu_ = self.us.len();
+        let n = nu_ * self.vs.len();
+        let mut a: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; n]);
+        let mut b: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; n]);
+        for (q, &v) in self.vs.iter().enumerate() {
+            for (p, &u) in self.us.iter().enumerate() {
+                let (ga, gb) = g(u, v);
+                for c in 0..COMPONENTS {
+                    a[c][q * nu_ + p] = ga[c];
+                    b[c][q * nu_ + p] = gb[c];
+                }
+            }
+        }
+        (a, b)
+    }
+}
+
+/// [`corner_primitives`] split by its linearity in nu: those of nu = 0 and their
+/// derivative in nu, from one evaluation of the transcendental terms.
+#[inline]
+fn corner_primitives_split(u: f64, v: f64, z: f64) -> ([f64; COMPONENTS], [f64; COMPONENTS]) {
+    let (u2, v2, z2) = (u * u, v * v, z * z);
+    let rho = (u2 + v2 + z2).sqrt();
+    let uv = u * v;
+    let half_atan = |y: f64, x: f64| {
+        if x > 0.0 {
+            (y / x).atan()
+        } else if y == 0.0 {
+            0.0
+        } else {
+            0.5 * PI * y.signum()
+        }
+    };
+    let a = half_atan(uv, z * rho);
+    let h1 = half_atan(uv * (u2 + v2), (rho + z) * (u2 * rho + z * v2));
+    let l = (rho + z).ln();
+    let slope = [-2.0 * a + 2.0 * h1, -2.0 * h1, 0.0, 2.0 * l, 0.0, 0.0];
+    if z2 == 0.0 {
+        return ([-h1, -(a - h1), -a, -l, 0.0, 0.0], slope);
+    }
+    let (uz, vz) = (u2 + z2, v2 + z2);
+    let cx = -uv / (uz * rho);
+    let cy = -uv / (vz * rho);
+    (
+        [
+            -z * cx - h1,
+            -z * cy - (a - h1),
+            -a + z * (cx + cy),
+            -l - z / rho,
+            z2 * v / (uz * rho),
+            z2 * u / (vz * rho),
+        ],
+        slope,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -310,6 +422,35 @@ mod tests {
                             let t = table.get(c, k, m);
                             assert!((t - d).abs() < 1e-13, "c {c} z {z} ({x}, {y}): {t} vs {d}");
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn poisson_split_is_love_at_any_nu() {
+        let lattice = OffsetLattice {
+            cell: 0.7,
+            x_first: -3.0,
+            cols: 7,
+            y_first: 0.5,
+            rows: 4,
+        };
+        for &z in &[0.0, 0.05, 1.3] {
+            let (mut base, mut slope) = (InfluenceTable::default(), InfluenceTable::default());
+            HomogeneousStressKernels::fill_poisson_split(z, &lattice, &mut base, &mut slope);
+            for nu in [0.0, 0.3, 0.5] {
+                let mut direct = InfluenceTable::default();
+                let material = Elastic { poisson: nu, ..MAT };
+                HomogeneousStressKernels { material }.fill(z, &lattice, &mut direct);
+                for c in 0..COMPONENTS {
+                    for (n, d) in direct.values[c].iter().enumerate() {
+                        let split = base.values[c][n] + nu * slope.values[c][n];
+                        assert!(
+                            (split - d).abs() < 1e-14,
+                            "c {c} z {z} nu {nu}: {split} vs {d}"
+                        );
                     }
                 }
             }

@@ -35,8 +35,16 @@
 //!    pitch: base wavenumbers `2 pi j / (M h)` plus their aliases `2 pi m / h` until
 //!    `e^{-k lambda}` is negligible, then one inverse 2-D FFT. The four wave-frame
 //!    functions of |k| are tabulated once per depth on Chebyshev panels, graded
-//!    towards k = 0. The cost per depth grows like `(h / lambda)^2` for coatings
-//!    thinner than a cell (the aliases resolve the sub-cell structure);
+//!    towards k = 0 (each thread of the tabulation reuses one
+//!    [`LayeredSolver`]). On one box `REACH / k1` wide (thousands of cells for a
+//!    large window) the cost per depth grows like `(h / lambda)^2`: the aliases
+//!    resolve the sub-cell structure, so the box's wavenumbers up to `ALIAS_DECAY /
+//!    lambda` all take a transfer. Where `ALIAS_DECAY / lambda` exceeds the edge
+//!    `8 BAND_RATIO k1` of the band above k1, the short waves are instead split in
+//!    bands as the sub-cell split's below (exact alias sums, no taper): the top band
+//!    on a box of a few cells, each lower band on a box only as wide as its reach,
+//!    which cut a coated XZ section of 256 x 128 from 256 x 256 by 3.4 (thin
+//!    coating, h1 = 1.6 cells) and 1.2 (thick, 32 cells);
 //!    (b) its long waves `chi T` in free space, by Hankel transforms
 //!    ([`super::long_wave`]).
 //!    For a coating thinner than a cell ([`StressMethod::SubCell`]) the split is
@@ -90,7 +98,7 @@ use rustfft::FftPlanner;
 use super::kernels::{
     HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
 };
-use super::long_wave::{long_wave_kernels, long_wave_share, short_wave_share, BAND_EDGE};
+use super::long_wave::{long_wave_kernels, long_wave_share, short_wave_share, Radial, BAND_EDGE};
 use crate::body::layered::{Base, LayeredSolver, Stack};
 use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
@@ -230,19 +238,23 @@ impl LayeredStressKernels {
 
     /// The wave-frame transfer `[xixi, etaeta, zz, xiz / i]` at wavenumber k >= 0 and
     /// depth z in `layer` (`crate::body::layered`); at k = 0 its long-wave limit.
-    fn transfer(&self, k: f64, layer: usize, z: f64) -> [f64; 4] {
+    fn transfer(&self, solver: &mut LayeredSolver, k: f64, layer: usize, z: f64) -> [f64; 4] {
         if k == 0.0 {
-            return self.long_wave_transfer(layer, z);
+            return self.long_wave_transfer(solver, layer, z);
         }
-        let mut solver = LayeredSolver::new(&self.stack).expect("a validated stack");
         solver.plane_response(k, layer, z).stress
+    }
+
+    /// A solver of the stack, for [`Self::transfer`].
+    fn solver(&self) -> LayeredSolver {
+        LayeredSolver::new(&self.stack).expect("a validated stack")
     }
 
     /// The transfer's limit at k -> 0: Richardson's extrapolation `2 T(e) - T(2 e)`
     /// from a wavenumber far below every length of the stack, its membrane lengths
     /// (a stiff layer's `(E / E_min) h`) included: the error is `O((e L)^2)`, about
     /// 1e-12.
-    fn long_wave_transfer(&self, layer: usize, z: f64) -> [f64; 4] {
+    fn long_wave_transfer(&self, solver: &mut LayeredSolver, layer: usize, z: f64) -> [f64; 4] {
         let softest = self
             .stack
             .layers
@@ -260,7 +272,6 @@ impl LayeredStressKernels {
             .map(|p| p.thickness * (p.material.young / softest).max(1.0))
             .sum::<f64>();
         let e = 1e-6 / length;
-        let mut solver = LayeredSolver::new(&self.stack).expect("a validated stack");
         let a = solver.plane_response(e, layer, z).stress;
         let b = solver.plane_response(2.0 * e, layer, z).stress;
         std::array::from_fn(|q| 2.0 * a[q] - b[q])
@@ -268,11 +279,11 @@ impl LayeredStressKernels {
 
     /// The long-wave in-plane stresses of the layer minus Love's, `(d_xi, d_eta)`:
     /// zero in the half-space base.
-    fn long_wave_difference(&self, layer: usize, z: f64) -> (f64, f64) {
+    fn long_wave_difference(&self, solver: &mut LayeredSolver, layer: usize, z: f64) -> (f64, f64) {
         if layer == self.stack.layers.len() {
             return (0.0, 0.0);
         }
-        let t = self.transfer(0.0, layer, z);
+        let t = self.transfer(solver, 0.0, layer, z);
         let nu = self.material(layer).poisson;
         (t[0] + 1.0, t[1] + 2.0 * nu)
     }
@@ -289,8 +300,15 @@ impl LayeredStressKernels {
 
     /// The wave-frame transfer `[xixi, etaeta, zz, xiz / i]` at k minus Love's and
     /// the long-wave carrier `(d_xi, d_eta) e^{-k lambda}`.
-    fn difference(&self, layer: usize, z: f64, carrier: (f64, f64, f64), k: f64) -> [f64; 4] {
-        let t = self.transfer(k, layer, z);
+    fn difference(
+        &self,
+        solver: &mut LayeredSolver,
+        layer: usize,
+        z: f64,
+        carrier: (f64, f64, f64),
+        k: f64,
+    ) -> [f64; 4] {
+        let t = self.transfer(solver, k, layer, z);
         let nu = self.material(layer).poisson;
         let kz = k * z;
         let e = (-kz).exp();
@@ -317,7 +335,7 @@ fn diagonal(lattice: &OffsetLattice) -> f64 {
 }
 
 /// `d/dk` at k = 0 of a function analytic in k (Richardson on two small steps).
-fn slope_at_zero(f: impl Fn(f64) -> [f64; 4], step: f64) -> [f64; 4] {
+fn slope_at_zero(mut f: impl FnMut(f64) -> [f64; 4], step: f64) -> [f64; 4] {
     let (a, b) = (f(step), f(2.0 * step));
     std::array::from_fn(|q| 2.0 * a[q] / step - b[q] / (2.0 * step))
 }
@@ -379,8 +397,7 @@ impl LayeredStressKernels {
         }
         let layer = self.layer(z);
         let material = self.material(layer);
-        // 1. Love's kernels of the depth's material.
-        HomogeneousStressKernels { material }.fill(z, lattice, table);
+        // 1. Love's kernels of the depth's material (filled with the carriers' below).
         // 2. Carriers of the difference's long-wave limit and of its slope at k = 0,
         // with transfers `e^{-k lambda}` and `k mu e^{-k mu}`. The slope's depth mu is
         // lambda, except in the sub-cell split, where it is at least a cell: the
@@ -396,34 +413,36 @@ impl LayeredStressKernels {
             lambda
         };
         let [al, be, ga, ep] = r1.map(|r| r / mu);
-        let with_nu = |poisson| Elastic {
-            poisson,
-            ..material
-        };
-        // Love's kernels for nu = 0 and 1/2 at a depth.
-        let love_pair = |depth: f64| {
+        // Love's kernels for nu = 0 and their derivative in nu at a depth (they are
+        // linear in nu: `G(1/2) - G(0)` is half the derivative).
+        let love_split = |depth: f64| {
             let mut zero = InfluenceTable::default();
-            let mut half = InfluenceTable::default();
-            HomogeneousStressKernels {
-                material: with_nu(0.0),
-            }
-            .fill(depth, lattice, &mut zero);
-            HomogeneousStressKernels {
-                material: with_nu(0.5),
-            }
-            .fill(depth, lattice, &mut half);
-            (zero, half)
+            let mut slope = InfluenceTable::default();
+            HomogeneousStressKernels::fill_poisson_split(depth, lattice, &mut zero, &mut slope);
+            (zero, slope)
         };
-        let (zero, half) = love_pair(lambda);
-        let slope_pair = (mu != lambda).then(|| love_pair(mu));
-        let (zero_s, half_s) = slope_pair.as_ref().map_or((&zero, &half), |(z, h)| (z, h));
+        let (zero, dnu) = love_split(lambda);
+        let slope_pair = (mu != lambda).then(|| love_split(mu));
+        let (zero_s, dnu_s) = slope_pair.as_ref().map_or((&zero, &dnu), |(z, h)| (z, h));
+        if lambda == z {
+            // Below the top layer the carriers' depth is z: Love's kernels of the
+            // depth's material are `G(0) + nu G'`.
+            let nu = material.poisson;
+            table.lattice = Some(*lattice);
+            for ((t, g0), g1) in table.values.iter_mut().zip(&zero.values).zip(&dnu.values) {
+                t.clear();
+                t.extend(g0.iter().zip(g1).map(|(a, b)| a + nu * b));
+            }
+        } else {
+            HomogeneousStressKernels { material }.fill(z, lattice, table);
+        }
         for n in 0..lattice.cols * lattice.rows {
             // A = -(G(1/2) - G(0)): transfer e^{-k l} (s^2, c^2, -c s) in (xx, yy, xy);
             // B: transfer k l e^{-k l} (c^2, s^2, c s); G(0)'s shears: i k l e^{-k l} (c, s).
-            let a = |c: usize| -(half.values[c][n] - zero.values[c][n]);
+            let a = |c: usize| -0.5 * dnu.values[c][n];
             let (axx, ayy, axy) = (a(0), a(1), a(3));
             // The same at the slope's depth mu.
-            let a_s = |c: usize| -(half_s.values[c][n] - zero_s.values[c][n]);
+            let a_s = |c: usize| -0.5 * dnu_s.values[c][n];
             let (bxx, byy, bxy) = (
                 zero_s.values[0][n] + a_s(1),
                 zero_s.values[1][n] + a_s(0),
@@ -442,12 +461,31 @@ impl LayeredStressKernels {
         }
         // 3. The remainder, O(k^2) at k = 0: its short waves by a periodic lattice
         // sum, its long waves by Hankel transforms.
-        let remainder = |k: f64| self.remainder(layer, z, carrier, r1, mu, k);
+        let eval = |solver: &mut LayeredSolver, k: f64| {
+            self.remainder(solver, layer, z, carrier, r1, mu, k)
+        };
+        let remainder = Radial {
+            stack: &self.stack,
+            eval: &eval,
+        };
         if method == StressMethod::SubCell {
-            self.add_sub_cell_remainder(lattice, lambda, z > 0.0, &remainder, table);
+            let top = Pass::Short {
+                taper: true,
+                edge: z > 0.0,
+            };
+            self.add_banded_remainder(lattice, lambda, top, &remainder, table);
             return;
         }
         let k1 = split_wavenumber(lattice);
+        if ALIAS_DECAY / lambda > BAND_EDGE * BAND_RATIO * k1 {
+            // The short waves reach past the first band's edge: in bands.
+            let top = Pass::Short {
+                taper: false,
+                edge: false,
+            };
+            self.add_banded_remainder(lattice, lambda, top, &remainder, table);
+            return;
+        }
         let short = remainder_on_lattice(
             lattice,
             lambda,
@@ -467,22 +505,27 @@ impl LayeredStressKernels {
         }
     }
 
-    /// The remainder of [`StressMethod::SubCell`], added to `table`: split at `k1 =
-    /// SUB_CELL_SPLIT / cell`, its short waves on the offsets within their reach
-    /// (`REACH / SUB_CELL_SPLIT` cells) of the loaded cell, on a small box with a
-    /// capped and tapered alias sum; its long waves split again into bands
-    /// `chi(k / k_hi) - chi(k / k_lo)`, `k_lo = k_hi / BAND_RATIO`, down to the full
-    /// expansion's split `k0 ~ 4 / span`, each band on the offsets within its reach
-    /// `REACH / k_lo` by a lattice sum with the few aliases its band edge `8 k_hi`
-    /// needs; below `k0` by Hankel transforms in free space, as the full expansion.
-    /// No band's kernel reaches its box's images, however long the coating's
-    /// membrane length, and the cost depends neither on `cell / h1` nor on `E1 / E2`.
-    fn add_sub_cell_remainder(
+    /// The remainder in bands, added to `table`: split at `k1 = SUB_CELL_SPLIT /
+    /// cell`, its short waves (pass `top`) on the offsets within their reach
+    /// (`REACH / SUB_CELL_SPLIT` cells) of the loaded cell, on a small box: for
+    /// [`StressMethod::SubCell`] with a capped and tapered alias sum, for
+    /// [`StressMethod::Full`] with the exact one; its long waves split again into
+    /// bands `chi(k / k_hi) - chi(k / k_lo)`, `k_lo = k_hi / BAND_RATIO`, down to the
+    /// full expansion's split `k0 ~ 4 / span`, each band on the offsets within its
+    /// reach `REACH / k_lo` by a lattice sum with the few aliases its band edge `8
+    /// k_hi` needs; below `k0` by Hankel transforms in free space, as the full
+    /// expansion. No band's kernel reaches its box's images, however long the
+    /// coating's membrane length, and the cost depends neither on `cell / h1` nor on
+    /// `E1 / E2`. The bands telescope: `(1 - chi(k / k1)) + sum (chi(k / k_hi) -
+    /// chi(k / k_lo)) = 1 - chi(k / k0)`, the full expansion's short waves, which its
+    /// one box of `REACH / k0` cells would sum at `(cell / lambda)^2` times more
+    /// wavenumbers (a second per depth at `lambda ~ 3` cells on a window of 256).
+    fn add_banded_remainder(
         &self,
         lattice: &OffsetLattice,
         lambda: f64,
-        below_surface: bool,
-        remainder: &(dyn Fn(f64) -> [f64; 4] + Sync),
+        top: Pass,
+        remainder: &Radial,
         table: &mut InfluenceTable,
     ) {
         let h = lattice.cell;
@@ -491,8 +534,7 @@ impl LayeredStressKernels {
         let mut add = |reach: f64, k_hi: f64, pass: Pass| {
             self.add_near(lattice, reach, lambda, k_hi, remainder, pass, table);
         };
-        let edge = below_surface;
-        add(REACH / (k1 * h), k1, Pass::Short { taper: true, edge });
+        add(REACH / (k1 * h), k1, top);
         let mut k_hi = k1;
         while k_hi > k0 {
             let k_lo = (k_hi / BAND_RATIO).max(k0);
@@ -517,7 +559,7 @@ impl LayeredStressKernels {
         reach: f64,
         lambda: f64,
         k_hi: f64,
-        remainder: &(dyn Fn(f64) -> [f64; 4] + Sync),
+        remainder: &Radial,
         pass: Pass,
         table: &mut InfluenceTable,
     ) {
@@ -557,11 +599,12 @@ impl LayeredStressKernels {
     /// decay length of the difference from Love's at large k) and the slope `r1` of
     /// the difference at k = 0.
     fn carriers(&self, layer: usize, z: f64) -> ((f64, f64, f64), [f64; 4]) {
+        let mut solver = self.solver();
         let lambda = self.decay_length(layer, z);
-        let (d_xi, d_eta) = self.long_wave_difference(layer, z);
+        let (d_xi, d_eta) = self.long_wave_difference(&mut solver, layer, z);
         let carrier = (d_xi, d_eta, lambda);
         let r1 = slope_at_zero(
-            |k| self.difference(layer, z, carrier, k),
+            |k| self.difference(&mut solver, layer, z, carrier, k),
             1e-4 / (self.stack.thickness() + z),
         );
         (carrier, r1)
@@ -569,8 +612,10 @@ impl LayeredStressKernels {
 
     /// The remainder's wave-frame transfer at k: the difference from Love's minus
     /// both carriers (the slope's at depth `mu`), O(k^2) at k = 0.
+    #[allow(clippy::too_many_arguments)]
     fn remainder(
         &self,
+        solver: &mut LayeredSolver,
         layer: usize,
         z: f64,
         carrier: (f64, f64, f64),
@@ -578,7 +623,7 @@ impl LayeredStressKernels {
         mu: f64,
         k: f64,
     ) -> [f64; 4] {
-        let d = self.difference(layer, z, carrier, k);
+        let d = self.difference(solver, layer, z, carrier, k);
         let e = k * (-k * mu).exp();
         std::array::from_fn(|q| d[q] - r1[q] * e)
     }
@@ -600,10 +645,11 @@ impl LayeredStressKernels {
             }
         }
         let mut largest = 0.0f64;
+        let mut solver = self.solver();
         for (z, layer) in points {
             let (carrier, r1) = self.carriers(layer, z);
             for k in [1.0 / cell, PI / cell] {
-                for v in self.remainder(layer, z, carrier, r1, carrier.2, k) {
+                for v in self.remainder(&mut solver, layer, z, carrier, r1, carrier.2, k) {
                     largest = largest.max(v.abs());
                 }
             }
@@ -645,11 +691,12 @@ impl LayeredStressKernels {
         let scale = if deep { z } else { h1 };
         let rule = GaussLegendre::new(8);
         let mut sums = [0.0; 2];
+        let mut solver = self.solver();
         for panel in 0..320 {
             let lo = 0.25 * panel as f64;
             for (q, sum) in sums.iter_mut().enumerate() {
                 *sum += rule.integrate(lo, lo + 0.25, |t| {
-                    self.thick_mean(layer, z, nu, deep, t / scale)[q] * t
+                    self.thick_mean(&mut solver, layer, z, nu, deep, t / scale)[q] * t
                 });
             }
         }
@@ -664,8 +711,16 @@ impl LayeredStressKernels {
 
     /// The angular means `[(xixi + etaeta) / 2, zz]` of the transfer at k (deep), or of
     /// its difference from Love's.
-    fn thick_mean(&self, layer: usize, z: f64, nu: f64, deep: bool, k: f64) -> [f64; 2] {
-        let t = self.transfer(k, layer, z);
+    fn thick_mean(
+        &self,
+        solver: &mut LayeredSolver,
+        layer: usize,
+        z: f64,
+        nu: f64,
+        deep: bool,
+        k: f64,
+    ) -> [f64; 2] {
+        let t = self.transfer(solver, k, layer, z);
         let (love_in_plane, love_zz) = if deep {
             (0.0, 0.0)
         } else {
@@ -797,7 +852,7 @@ fn remainder_on_lattice(
     lambda: f64,
     thickness: f64,
     k1: f64,
-    radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
+    radial: &Radial,
     pass: Pass,
 ) -> [Vec<f64>; COMPONENTS] {
     let h = lattice.cell;
@@ -1015,17 +1070,12 @@ impl RadialTable {
     /// Tabulates `radial(theta / h)` on `[0, theta_top]`: graded panels from
     /// `theta_graded`, then panels no wider than the scale `h / length` of its
     /// exponentials.
-    fn new(
-        theta_top: f64,
-        h: f64,
-        length: f64,
-        theta_graded: f64,
-        radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
-    ) -> Self {
+    fn new(theta_top: f64, h: f64, length: f64, theta_graded: f64, radial: &Radial) -> Self {
         let width = (2.0 * h / length.max(1e-300)).min(PI);
         let build = |lo: f64, hi: f64, panels: usize| {
             let points = ChebyshevPanels::points(lo, hi, panels, PANEL_DEGREE);
-            let values: Vec<[f64; 4]> = points.par_iter().map(|&t| radial(t / h)).collect();
+            let ks: Vec<f64> = points.iter().map(|&t| t / h).collect();
+            let values = radial.eval_all(&ks);
             InterleavedPanels::new(std::array::from_fn(|q| {
                 let v: Vec<f64> = values.iter().map(|r| r[q]).collect();
                 ChebyshevPanels::from_values(lo, hi, panels, PANEL_DEGREE, &v)

@@ -22,7 +22,33 @@ use rayon::prelude::*;
 use realfft::num_complex::Complex;
 
 use super::kernels::{OffsetLattice, COMPONENTS};
+use crate::body::layered::{LayeredSolver, Stack};
 use crate::body::quadrature::{GaussLegendre, SharedPanels};
+
+/// A wave-frame transfer `[xixi, etaeta, zz, xiz / i]` of the wavenumber k (in
+/// 1/length), evaluated with a [`LayeredSolver`] of `stack` that the caller owns:
+/// parallel loops build one solver per thread (`map_init`) and reuse it for every
+/// wavenumber, instead of one per evaluation.
+pub(super) struct Radial<'a> {
+    /// The stack whose solvers `eval` takes.
+    pub stack: &'a Stack,
+    /// The transfer at k, with a solver of `stack`.
+    pub eval: &'a (dyn Fn(&mut LayeredSolver, f64) -> [f64; 4] + Sync),
+}
+
+impl Radial<'_> {
+    /// A solver for [`Radial::eval`].
+    pub fn solver(&self) -> LayeredSolver {
+        LayeredSolver::new(self.stack).expect("a validated stack")
+    }
+
+    /// The transfer at every wavenumber of `ks`, in parallel, one solver per thread.
+    pub fn eval_all(&self, ks: &[f64]) -> Vec<[f64; 4]> {
+        ks.par_iter()
+            .map_init(|| self.solver(), |solver, &k| (self.eval)(solver, k))
+            .collect()
+    }
+}
 
 /// Terms of the long waves' share: `chi(k) = e^{-q} sum_{j < TERMS} q^j / j!`, `q =
 /// (k / k1)^2`. Then `1 - chi = O(k^16)` at k = 0, so the short-wave complement keeps
@@ -79,7 +105,7 @@ const GRADING: i32 = 30;
 pub(super) fn long_wave_kernels(
     lattice: &OffsetLattice,
     k1: f64,
-    radial: &(dyn Fn(f64) -> [f64; 4] + Sync),
+    radial: &Radial,
 ) -> [Vec<f64>; COMPONENTS] {
     let h = lattice.cell;
     let k_edge = k1 * BAND_EDGE;
@@ -117,7 +143,13 @@ pub(super) fn long_wave_kernels(
     let dft = rustfft::FftPlanner::<f64>::new().plan_fft_forward(ANGLES);
     let per_node: Vec<Vec<f64>> = nodes
         .par_iter()
-        .map(|&(k, weight)| angular_modes(k, h, k1, weight, radial(k), dft.as_ref()))
+        .map_init(
+            || radial.solver(),
+            |solver, &(k, weight)| {
+                let t = (radial.eval)(solver, k);
+                angular_modes(k, h, k1, weight, t, dft.as_ref())
+            },
+        )
         .collect();
     let entries_all = COMPONENTS * (MAX_ORDER + 1) * 2;
     // Keep the modes that matter (bounded by the sum of |f| since |J_n| <= 1).
