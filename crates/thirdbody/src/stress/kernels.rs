@@ -149,6 +149,17 @@ pub struct InfluenceTable {
     pub lattice: Option<OffsetLattice>,
     /// Component-major values, rows along y.
     pub values: [Vec<f64>; COMPONENTS],
+    /// Work that a body's kernels keep between fills on one lattice (a section's
+    /// depths): the table's owner keeps it, one per thread. Not part of the API.
+    #[doc(hidden)]
+    pub scratch: KernelScratch,
+}
+
+/// Work kept between [`StressKernels::fill`]s of one table: for layered bodies,
+/// the depth-independent part of the long waves' Hankel transforms.
+#[derive(Debug, Clone, Default)]
+pub struct KernelScratch {
+    pub(super) long_wave: super::long_wave::LongWaveBasis,
 }
 
 impl InfluenceTable {

@@ -39,12 +39,11 @@
 //!    [`LayeredSolver`]). On one box `REACH / k1` wide (thousands of cells for a
 //!    large window) the cost per depth grows like `(h / lambda)^2`: the aliases
 //!    resolve the sub-cell structure, so the box's wavenumbers up to `ALIAS_DECAY /
-//!    lambda` all take a transfer. Where `ALIAS_DECAY / lambda` exceeds the edge
-//!    `8 BAND_RATIO k1` of the band above k1, the short waves are instead split in
-//!    bands as the sub-cell split's below (exact alias sums, no taper): the top band
-//!    on a box of a few cells, each lower band on a box only as wide as its reach,
-//!    which cut a coated XZ section of 256 x 128 from 256 x 256 by 3.4 (thin
-//!    coating, h1 = 1.6 cells) and 1.2 (thick, 32 cells);
+//!    lambda` all take a transfer. Where that needs aliases (`ALIAS_DECAY h /
+//!    lambda >= pi`, lambda below 10 cells) on a box wider than the offsets, the
+//!    short waves are instead split in bands as the sub-cell split's below (exact
+//!    alias sums, no taper): the top band on a box of a few cells, each lower band
+//!    on a box only as wide as its reach (docs/performance.md);
 //!    (b) its long waves `chi T` in free space, by Hankel transforms
 //!    ([`super::long_wave`]).
 //!    For a coating thinner than a cell ([`StressMethod::SubCell`]) the split is
@@ -477,8 +476,8 @@ impl LayeredStressKernels {
             return;
         }
         let k1 = split_wavenumber(lattice);
-        if ALIAS_DECAY / lambda > BAND_EDGE * BAND_RATIO * k1 {
-            // The short waves reach past the first band's edge: in bands.
+        if ALIAS_DECAY * lattice.cell / lambda >= PI && k1 * lattice.cell < 1.0 {
+            // The short waves need aliases on a box of `REACH / k1` cells: in bands.
             let top = Pass::Short {
                 taper: false,
                 edge: false,
@@ -497,7 +496,7 @@ impl LayeredStressKernels {
                 edge: false,
             },
         );
-        let long = long_wave_kernels(lattice, k1, &remainder);
+        let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
         for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
             for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
                 *v += a + b;
@@ -541,7 +540,7 @@ impl LayeredStressKernels {
             add(REACH / (k_lo * h), k_hi, Pass::Band { low: k_lo * h });
             k_hi = k_lo;
         }
-        let long = long_wave_kernels(lattice, k0, remainder);
+        let long = long_wave_kernels(lattice, k0, remainder, &mut table.scratch.long_wave);
         for (t, l) in table.values.iter_mut().zip(long) {
             for (v, a) in t.iter_mut().zip(l) {
                 *v += a;
@@ -971,55 +970,63 @@ fn remainder_on_lattice(
     // Column by column (jx = 0..=len/2 of the half plane): the spectrum over all jy,
     // its inverse transform along y, and only the needed output rows kept:
     // `columns[jx][c][r]` for output row `rows[r]`.
+    // Each thread reuses its spectrum and FFT scratch buffers (allocating them per
+    // column cost as much as the transforms, in page faults).
     let columns: Vec<Option<[Vec<Complex<f64>>; COMPONENTS]>> = (0..half_x)
         .into_par_iter()
-        .map(|jx| {
-            let x = &tx[jx];
-            if x.theta.iter().all(|t| t.abs() > theta_cut) {
-                return None;
-            }
-            let mut spectrum: [Vec<Complex<f64>>; COMPONENTS] =
-                std::array::from_fn(|_| vec![Complex::default(); ay.len]);
-            for (jy, y) in ty.iter().enumerate() {
-                let mut acc = [Complex::<f64>::default(); COMPONENTS];
-                for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
-                    if ty_.abs() > theta_cut {
-                        continue;
-                    }
-                    for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
-                        // |k| h; the wave numbers are bounded (a few times 2 pi),
-                        // so hypot's overflow guard is not needed.
-                        let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
-                        if theta > theta_cut {
+        .map_init(
+            || {
+                let spectrum: [Vec<Complex<f64>>; COMPONENTS] =
+                    std::array::from_fn(|_| vec![Complex::default(); ay.len]);
+                let scratch = vec![Complex::default(); fft_y.get_inplace_scratch_len()];
+                (spectrum, scratch)
+            },
+            |(spectrum, scratch), jx| {
+                let x = &tx[jx];
+                if x.theta.iter().all(|t| t.abs() > theta_cut) {
+                    return None;
+                }
+                for (jy, y) in ty.iter().enumerate() {
+                    let mut acc = [Complex::<f64>::default(); COMPONENTS];
+                    for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
+                        if ty_.abs() > theta_cut {
                             continue;
                         }
-                        let r = radial_table.eval(theta).map(|v| v * high_pass(theta));
-                        let (c, s) = if theta > 0.0 {
-                            (tx_ / theta, ty_ / theta)
-                        } else {
-                            (1.0, 0.0)
-                        };
-                        let w = wx * wy;
-                        let (xixi, etaeta, zz, xiz) = (r[0], r[1], r[2], r[3]);
-                        let shear = Complex::new(0.0, xiz) * w;
-                        acc[0] += w * (xixi * c * c + etaeta * s * s);
-                        acc[1] += w * (xixi * s * s + etaeta * c * c);
-                        acc[2] += w * zz;
-                        acc[3] += w * ((xixi - etaeta) * c * s);
-                        acc[4] += shear * c;
-                        acc[5] += shear * s;
+                        for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
+                            // |k| h; the wave numbers are bounded (a few times 2 pi),
+                            // so hypot's overflow guard is not needed.
+                            let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
+                            if theta > theta_cut {
+                                continue;
+                            }
+                            let r = radial_table.eval(theta).map(|v| v * high_pass(theta));
+                            let (c, s) = if theta > 0.0 {
+                                (tx_ / theta, ty_ / theta)
+                            } else {
+                                (1.0, 0.0)
+                            };
+                            let w = wx * wy;
+                            let (xixi, etaeta, zz, xiz) = (r[0], r[1], r[2], r[3]);
+                            let shear = Complex::new(0.0, xiz) * w;
+                            acc[0] += w * (xixi * c * c + etaeta * s * s);
+                            acc[1] += w * (xixi * s * s + etaeta * c * c);
+                            acc[2] += w * zz;
+                            acc[3] += w * ((xixi - etaeta) * c * s);
+                            acc[4] += shear * c;
+                            acc[5] += shear * s;
+                        }
+                    }
+                    for (dst, a) in spectrum.iter_mut().zip(acc) {
+                        dst[jy] = a * norm;
                     }
                 }
-                for (dst, a) in spectrum.iter_mut().zip(acc) {
-                    dst[jy] = a * norm;
-                }
-            }
-            let mut scratch = vec![Complex::default(); fft_y.get_inplace_scratch_len()];
-            Some(spectrum.map(|mut column| {
-                fft_y.process_with_scratch(&mut column, &mut scratch);
-                rows.iter().map(|&r| column[r]).collect()
-            }))
-        })
+                Some(std::array::from_fn(|c| {
+                    let column = &mut spectrum[c];
+                    fft_y.process_with_scratch(column, scratch);
+                    rows.iter().map(|&r| column[r]).collect()
+                }))
+            },
+        )
         .collect();
 
     // Along x: one real inverse transform per output row and component.

@@ -99,59 +99,159 @@ const R_POINTS: usize = 24;
 /// O(k^3), adds nothing at double precision).
 const GRADING: i32 = 30;
 
+/// The work of [`long_wave_kernels`] that depends on the lattice and the split
+/// wavenumber only, not on the transfer (so not on the depth): the k nodes, the
+/// angular modes of the four unit wave-frame transfers at each (the modes are
+/// linear in the transfer), the r nodes, the Bessel functions `J_n(k r)` at every
+/// pair of nodes and the interpolation axes. A section's depths share one lattice,
+/// so the caller keeps it between depths (in the [`super::kernels::InfluenceTable`]
+/// it fills, one per thread); it is rebuilt when the lattice or the split changes.
+#[derive(Clone, Default)]
+pub struct LongWaveBasis {
+    key: Option<(OffsetLattice, f64)>,
+    /// The k nodes.
+    ks: Vec<f64>,
+    /// Per k node and unit transfer q, the modes (entries as [`angular_modes`]'s):
+    /// `unit_modes[(node * 4 + q) * ENTRIES + e]`.
+    unit_modes: Vec<f64>,
+    r_max: f64,
+    panels: usize,
+    /// `J_n(k r)`, n up to `MAX_ORDER`: `bessel[(r_node * ks.len() + node) * (MAX_ORDER +
+    /// 1) + n]`.
+    bessel: Vec<f64>,
+    r_count: usize,
+    axes: Option<(InterpolationAxis, InterpolationAxis)>,
+}
+
+impl std::fmt::Debug for LongWaveBasis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LongWaveBasis")
+            .field("key", &self.key)
+            .field("k_nodes", &self.ks.len())
+            .field("r_nodes", &self.r_count)
+            .finish()
+    }
+}
+
+/// Entries of the angular modes per k node: `[c][n][cos | sin]`.
+const ENTRIES: usize = COMPONENTS * (MAX_ORDER + 1) * 2;
+
+impl LongWaveBasis {
+    /// Builds the basis for `lattice` and `k1` unless it holds it already.
+    fn prepare(&mut self, lattice: &OffsetLattice, k1: f64) {
+        if self.key == Some((*lattice, k1)) {
+            return;
+        }
+        let h = lattice.cell;
+        let k_edge = k1 * BAND_EDGE;
+        let extent = |first: f64, count: usize| {
+            let (a, b) = (first * h, (first + count as f64 - 1.0) * h);
+            a.abs().max(b.abs())
+        };
+        let r_max = extent(lattice.x_first, lattice.cols)
+            .hypot(extent(lattice.y_first, lattice.rows))
+            .max(h);
+
+        // k nodes and weights (times k, the polar Jacobian).
+        let rule = GaussLegendre::new(K_POINTS);
+        let widest = 8.0 / r_max;
+        let mut bounds = vec![0.0];
+        for i in (0..=GRADING).rev() {
+            let hi = k_edge * 2f64.powi(-i);
+            let lo = *bounds.last().unwrap_or(&0.0);
+            let pieces = ((hi - lo) / widest).ceil().max(1.0) as usize;
+            for p in 1..=pieces {
+                bounds.push(lo + (hi - lo) * p as f64 / pieces as f64);
+            }
+        }
+        let mut nodes = Vec::new();
+        for w in bounds.windows(2) {
+            let (lo, hi) = (w[0], w[1]);
+            let (half, mid) = (0.5 * (hi - lo), 0.5 * (hi + lo));
+            for (x, wt) in rule.nodes.iter().zip(&rule.weights) {
+                let k = mid + half * x;
+                nodes.push((k, wt * half * k));
+            }
+        }
+
+        // Angular modes per k node of the unit transfers (times the weight).
+        let dft = rustfft::FftPlanner::<f64>::new().plan_fft_forward(ANGLES);
+        let unit_modes: Vec<f64> = nodes
+            .par_iter()
+            .flat_map_iter(|&(k, weight)| {
+                let dft = dft.as_ref();
+                (0..4).flat_map(move |q| {
+                    let t = std::array::from_fn(|i| if i == q { 1.0 } else { 0.0 });
+                    angular_modes(k, h, k1, weight, t, dft)
+                })
+            })
+            .collect();
+
+        // Bessel functions at the Chebyshev points in r.
+        let panels = ((r_max * k_edge / 8.0).ceil() as usize).max(1);
+        let r_nodes =
+            crate::body::quadrature::ChebyshevPanels::points(0.0, r_max, panels, R_POINTS);
+        let bessel: Vec<f64> = r_nodes
+            .par_iter()
+            .flat_map_iter(|&r| {
+                let mut j = vec![0.0; MAX_ORDER + 1];
+                nodes.iter().flat_map(move |&(k, _)| {
+                    bessel_j_upto(k * r, &mut j);
+                    j.clone()
+                })
+            })
+            .collect();
+        let x_axis = InterpolationAxis::new(lattice.x_first * h, lattice.cols, h, k_edge);
+        let y_axis = InterpolationAxis::new(lattice.y_first * h, lattice.rows, h, k_edge);
+        *self = LongWaveBasis {
+            key: Some((*lattice, k1)),
+            ks: nodes.iter().map(|&(k, _)| k).collect(),
+            unit_modes,
+            r_max,
+            panels,
+            bessel,
+            r_count: r_nodes.len(),
+            axes: Some((x_axis, y_axis)),
+        };
+    }
+}
+
 /// The band-limited long-wave part of a remainder with wave-frame transfer
 /// `radial(k) = [xixi, etaeta, zz, xiz / i]` (k in 1/length), at every offset of
 /// `lattice`: `[sigma_x, ..., tau_yz]`, offsets row-major as in the influence tables.
+/// `basis` holds (or is given) the work that does not depend on the transfer.
 pub(super) fn long_wave_kernels(
     lattice: &OffsetLattice,
     k1: f64,
     radial: &Radial,
+    basis: &mut LongWaveBasis,
 ) -> [Vec<f64>; COMPONENTS] {
-    let h = lattice.cell;
-    let k_edge = k1 * BAND_EDGE;
-    let extent = |first: f64, count: usize| {
-        let (a, b) = (first * h, (first + count as f64 - 1.0) * h);
-        a.abs().max(b.abs())
-    };
-    let r_max = extent(lattice.x_first, lattice.cols)
-        .hypot(extent(lattice.y_first, lattice.rows))
-        .max(h);
+    basis.prepare(lattice, k1);
+    let basis = &*basis;
+    let (r_max, panels) = (basis.r_max, basis.panels);
+    let n_nodes = basis.ks.len();
 
-    // k nodes and weights (times k, the polar Jacobian).
-    let rule = GaussLegendre::new(K_POINTS);
-    let widest = 8.0 / r_max;
-    let mut bounds = vec![0.0];
-    for i in (0..=GRADING).rev() {
-        let hi = k_edge * 2f64.powi(-i);
-        let lo = *bounds.last().unwrap_or(&0.0);
-        let pieces = ((hi - lo) / widest).ceil().max(1.0) as usize;
-        for p in 1..=pieces {
-            bounds.push(lo + (hi - lo) * p as f64 / pieces as f64);
-        }
-    }
-    let mut nodes = Vec::new();
-    for w in bounds.windows(2) {
-        let (lo, hi) = (w[0], w[1]);
-        let (half, mid) = (0.5 * (hi - lo), 0.5 * (hi + lo));
-        for (x, wt) in rule.nodes.iter().zip(&rule.weights) {
-            let k = mid + half * x;
-            nodes.push((k, wt * half * k));
-        }
-    }
-
-    // Angular modes per k node: `[c][n][cos | sin]` radial functions (times weight).
-    let dft = rustfft::FftPlanner::<f64>::new().plan_fft_forward(ANGLES);
-    let per_node: Vec<Vec<f64>> = nodes
-        .par_iter()
-        .map_init(
-            || radial.solver(),
-            |solver, &(k, weight)| {
-                let t = (radial.eval)(solver, k);
-                angular_modes(k, h, k1, weight, t, dft.as_ref())
-            },
-        )
+    // Angular modes per k node: `[c][n][cos | sin]` radial functions (times weight),
+    // the transfer's combination of the unit transfers' modes.
+    let transfers = radial.eval_all(&basis.ks);
+    let per_node: Vec<Vec<f64>> = transfers
+        .iter()
+        .enumerate()
+        .map(|(node, t)| {
+            let mut f = vec![0.0; ENTRIES];
+            for (q, &tq) in t.iter().enumerate() {
+                if tq == 0.0 {
+                    continue;
+                }
+                let unit = &basis.unit_modes[(node * 4 + q) * ENTRIES..][..ENTRIES];
+                for (a, u) in f.iter_mut().zip(unit) {
+                    *a += tq * u;
+                }
+            }
+            f
+        })
         .collect();
-    let entries_all = COMPONENTS * (MAX_ORDER + 1) * 2;
+    let entries_all = ENTRIES;
     // Keep the modes that matter (bounded by the sum of |f| since |J_n| <= 1).
     let size: Vec<f64> = (0..entries_all)
         .map(|e| per_node.iter().map(|f| f[e].abs()).sum())
@@ -167,15 +267,13 @@ pub(super) fn long_wave_kernels(
     let top_order = kept.iter().map(|&e| order_of(e)).max().unwrap_or(0);
 
     // Hankel transforms at the Chebyshev points in r.
-    let panels = ((r_max * k_edge / 8.0).ceil() as usize).max(1);
-    let r_nodes = crate::body::quadrature::ChebyshevPanels::points(0.0, r_max, panels, R_POINTS);
-    let transforms: Vec<Vec<f64>> = r_nodes
-        .par_iter()
-        .map(|&r| {
+    let orders = MAX_ORDER + 1;
+    let transforms: Vec<Vec<f64>> = (0..basis.r_count)
+        .into_par_iter()
+        .map(|ri| {
             let mut sums = vec![0.0; kept.len()];
-            let mut j = vec![0.0; top_order + 1];
-            for (&(k, _), f) in nodes.iter().zip(&per_node) {
-                bessel_j_upto(k * r, &mut j);
+            let row = &basis.bessel[ri * n_nodes * orders..][..n_nodes * orders];
+            for (j, f) in row.chunks_exact(orders).zip(&per_node) {
                 for (s, &e) in sums.iter_mut().zip(&kept) {
                     *s += f[e] * j[order_of(e)];
                 }
@@ -211,8 +309,7 @@ pub(super) fn long_wave_kernels(
     // the Chebyshev points and interpolate to the offsets (barycentric formula;
     // Trefethen, Approximation Theory and Approximation Practice, ch. 5), or take the
     // offsets themselves where there are fewer of them.
-    let x_axis = InterpolationAxis::new(lattice.x_first * h, lattice.cols, h, k_edge);
-    let y_axis = InterpolationAxis::new(lattice.y_first * h, lattice.rows, h, k_edge);
+    let (x_axis, y_axis) = basis.axes.as_ref().expect("prepared above");
     let samples: Vec<[f64; COMPONENTS]> = y_axis
         .nodes
         .par_iter()
@@ -251,6 +348,7 @@ pub(super) fn long_wave_kernels(
 /// One axis of the tensor interpolation: the sample points (Chebyshev points of the
 /// second kind spanning the offsets, or the offsets themselves) and the barycentric
 /// weights of every offset, `weights[i * count + m]` for sample i and offset m.
+#[derive(Clone)]
 struct InterpolationAxis {
     nodes: Vec<f64>,
     count: usize,

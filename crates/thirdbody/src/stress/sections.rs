@@ -62,21 +62,19 @@ pub(crate) fn planes(
     };
     let per_depth: Vec<Components> = if depths.len() > 1 {
         let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
-        depths
-            .par_iter()
-            .map_init(
-                || {
-                    let mut conv = plan.convolver();
-                    conv.transform_field(pressure);
-                    (conv, InfluenceTable::default())
-                },
-                |(conv, table), &z| {
-                    let out = one_depth(&plan, conv, table, z);
-                    depth_done();
-                    out
-                },
-            )
-            .collect()
+        per_thread_map(
+            depths,
+            || {
+                let mut conv = plan.convolver();
+                conv.transform_field(pressure);
+                (conv, InfluenceTable::default())
+            },
+            |(conv, table), &z| {
+                let out = one_depth(&plan, conv, table, z);
+                depth_done();
+                out
+            },
+        )
     } else {
         let plan = ConvolutionPlan::new(nx, ny, Parallelism::Rayon);
         let mut conv = plan.convolver();
@@ -172,53 +170,80 @@ pub(crate) fn xz_plane(
     };
     let scratch_len = forward.get_scratch_len().max(inverse.get_scratch_len());
     let scale = 1.0 / width as f64;
-    let per_depth: Vec<Components> = depths
-        .par_iter()
-        .map_init(
-            || {
-                (
-                    InfluenceTable::default(),
-                    vec![0.0; width],
-                    vec![Complex::default(); half],
-                    vec![Complex::default(); half],
-                    vec![Complex::default(); scratch_len],
-                )
-            },
-            |(table, real, spec, acc, scratch), &z| {
-                kernels.fill(z, &lattice, table);
-                let mut out: Components = Default::default();
-                for (c, o) in out.iter_mut().enumerate() {
-                    acc.fill(Complex::default());
-                    let even = parity.is_none_or(|even| even[c]);
-                    for group in &groups {
-                        let m = group.m;
-                        let p_spec = if even { &group.plus } else { &group.minus };
-                        let row = &table.values[c][m * lattice.cols..(m + 1) * lattice.cols];
-                        // Wrap-around order: offsets 0..nx-1, an unused slot, then
-                        // the negative offsets -(nx-1)..-1.
-                        real[..nx].copy_from_slice(&row[nx - 1..]);
-                        real[nx] = 0.0;
-                        real[nx + 1..].copy_from_slice(&row[..nx - 1]);
-                        forward
-                            .process_with_scratch(real, spec, scratch)
-                            .expect("FFT lengths are fixed by the plan");
-                        for ((a, k), p) in acc.iter_mut().zip(spec.iter()).zip(p_spec) {
-                            *a += k * p;
-                        }
-                    }
-                    acc[0].im = 0.0;
-                    acc[nx].im = 0.0;
-                    inverse
-                        .process_with_scratch(acc, real, scratch)
+    let per_depth: Vec<Components> = per_thread_map(
+        depths,
+        || {
+            (
+                InfluenceTable::default(),
+                vec![0.0; width],
+                vec![Complex::default(); half],
+                vec![Complex::default(); half],
+                vec![Complex::default(); scratch_len],
+            )
+        },
+        |(table, real, spec, acc, scratch), &z| {
+            kernels.fill(z, &lattice, table);
+            let mut out: Components = Default::default();
+            for (c, o) in out.iter_mut().enumerate() {
+                acc.fill(Complex::default());
+                let even = parity.is_none_or(|even| even[c]);
+                for group in &groups {
+                    let m = group.m;
+                    let p_spec = if even { &group.plus } else { &group.minus };
+                    let row = &table.values[c][m * lattice.cols..(m + 1) * lattice.cols];
+                    // Wrap-around order: offsets 0..nx-1, an unused slot, then
+                    // the negative offsets -(nx-1)..-1.
+                    real[..nx].copy_from_slice(&row[nx - 1..]);
+                    real[nx] = 0.0;
+                    real[nx + 1..].copy_from_slice(&row[..nx - 1]);
+                    forward
+                        .process_with_scratch(real, spec, scratch)
                         .expect("FFT lengths are fixed by the plan");
-                    o.extend(real[..nx].iter().map(|v| v * scale));
+                    for ((a, k), p) in acc.iter_mut().zip(spec.iter()).zip(p_spec) {
+                        *a += k * p;
+                    }
                 }
-                depth_done();
-                out
-            },
-        )
-        .collect();
+                acc[0].im = 0.0;
+                acc[nx].im = 0.0;
+                inverse
+                    .process_with_scratch(acc, real, scratch)
+                    .expect("FFT lengths are fixed by the plan");
+                o.extend(real[..nx].iter().map(|v| v * scale));
+            }
+            depth_done();
+            out
+        },
+    );
     gather(per_depth, nx)
+}
+
+/// `f(state, item)` for every item, in parallel, in order: one state from `init`
+/// per thread, kept for all of its items (a kernel table keeps work between the
+/// depths of one lattice), the items interleaved between the threads (neighbouring
+/// depths cost alike). Rayon's `map_init` makes a state per split job, several per
+/// thread.
+fn per_thread_map<T: Sync, S, R: Send>(
+    items: &[T],
+    init: impl Fn() -> S + Sync,
+    f: impl Fn(&mut S, &T) -> R + Sync,
+) -> Vec<R> {
+    let tasks = rayon::current_num_threads().clamp(1, items.len().max(1));
+    let parts: Vec<Vec<R>> = (0..tasks)
+        .into_par_iter()
+        .map(|t| {
+            let mut state = init();
+            items
+                .iter()
+                .skip(t)
+                .step_by(tasks)
+                .map(|item| f(&mut state, item))
+                .collect()
+        })
+        .collect();
+    let mut parts: Vec<std::vec::IntoIter<R>> = parts.into_iter().map(Vec::into_iter).collect();
+    (0..items.len())
+        .map(|i| parts[i % tasks].next().expect("one result per item"))
+        .collect()
 }
 
 /// The loaded source rows at offsets `+t` and `-t` (either may be absent).
