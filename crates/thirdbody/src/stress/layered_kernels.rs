@@ -45,7 +45,15 @@
 //!    alias sums, no taper): the top band on a box of a few cells, each lower band
 //!    on a box only as wide as its reach (docs/performance.md);
 //!    (b) its long waves `chi T` in free space, by Hankel transforms
-//!    ([`super::long_wave`]).
+//!    ([`super::long_wave`]). Their k and r nodes, the angular modes of the four
+//!    unit wave-frame transfers (the modes are linear in the transfer), the Bessel
+//!    functions and the interpolation axes depend on the lattice only: the caller's
+//!    [`InfluenceTable`] keeps them (`KernelScratch`) for all the depths of a
+//!    section, so a depth pays only for its transfer at the k nodes and the sums.
+//!
+//!    Love's kernels are linear in nu, so the carriers' pair (nu = 0 and its
+//!    derivative) comes from one evaluation of the corner primitives, and below
+//!    the top layer, where lambda = z, it gives the depth's own Love kernels too.
 //!    For a coating thinner than a cell ([`StressMethod::SubCell`]) the split is
 //!    moved to `k1 = 4 / h`: the short waves' kernel then lies within five cells, so
 //!    a 16 x 16 box holds it, and its alias sum is capped at 128 orders per axis

@@ -1,4 +1,4 @@
-//! The long-wave part of the coated-body stress remainder (see [`super::coated_kernels`]),
+//! The long-wave part of the coated-body stress remainder (see [`super::layered_kernels`]),
 //! computed in free space, without the periodic images of a lattice sum:
 //! `K(X) = (1 / 4 pi^2) int chi(k) T(k, phi) P(k, phi) e^{i k.X} d^2k`, with the
 //! remainder's transfer `T` in wave-frame form, the cell factor `P = h^2 sinc(kx h/2)
@@ -14,7 +14,11 @@
 //! length, and no wider than the oscillation of `J_n(k r_max)` allows; the angular modes
 //! come from a DFT of the integrand on equally spaced angles (spectrally accurate for
 //! a smooth periodic function); the `A_n`, `B_n` are tabulated on Chebyshev panels in r
-//! (band-limited, so smooth) and summed at every offset.
+//! (band-limited, so smooth) and summed at every offset. Everything but the transfer
+//! itself depends only on the lattice and `k1` ([`LongWaveBasis`], kept by the
+//! caller between depths): the modes are linear in the four wave-frame transfers, so
+//! a depth combines the modes of the unit transfers at each k node, and the Bessel
+//! functions `J_n(k r)` at all node pairs are computed once.
 
 use std::f64::consts::PI;
 
