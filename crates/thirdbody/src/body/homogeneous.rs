@@ -54,7 +54,7 @@ impl ElasticBody for HomogeneousHalfSpace {
 }
 
 /// `u asinh(v / |u|)`, continued by 0 at u = 0.
-fn half_primitive(u: f64, v: f64) -> f64 {
+pub(super) fn half_primitive(u: f64, v: f64) -> f64 {
     if u == 0.0 {
         0.0
     } else {

@@ -13,6 +13,7 @@ pub(crate) mod quadrature;
 pub mod stack;
 #[cfg(test)]
 pub(crate) mod two_layer_oracle;
+pub mod viscoelastic;
 
 use std::sync::Arc;
 
