@@ -670,15 +670,17 @@ mod tests {
         a: f64,
         b: f64,
         whole: f64,
+        tol: f64,
         depth: u32,
     ) -> f64 {
         let m = 0.5 * (a + b);
         let left = gl.integrate(a, m, f);
         let right = gl.integrate(m, b, f);
-        if (left + right - whole).abs() < 1e-16 || depth == 0 {
+        if (left + right - whole).abs() < tol || depth == 0 {
             left + right
         } else {
-            adaptive(gl, f, a, m, left, depth - 1) + adaptive(gl, f, m, b, right, depth - 1)
+            adaptive(gl, f, a, m, left, tol, depth - 1)
+                + adaptive(gl, f, m, b, right, tol, depth - 1)
         }
     }
 
@@ -716,7 +718,7 @@ mod tests {
         for p in breaks.windows(2) {
             let f: &dyn Fn(f64) -> f64 = if p[1] <= x + 0.5 { &inside } else { &outside };
             let whole = gl.integrate(p[0], p[1], f);
-            sum += adaptive(&gl, f, p[0], p[1], whole, 40);
+            sum += adaptive(&gl, f, p[0], p[1], whole, 1e-16 / lambda.max(1.0), 40);
         }
         sum / PI
     }
@@ -746,6 +748,19 @@ mod tests {
         }
         eprintln!("l = 1e-9 cell: {slow_err:.2e} of the peak; l = 1e12 windows: {fast_err:.2e}");
         assert!(slow_err < 2e-9, "{slow_err}");
+        // The first-order term: M = L + lambda dL/dX + O(lambda^2), with
+        // dL_1/dX = (G(X + 1/2) - G(X - 1/2)) / pi, G(s) = int_{Y-1/2}^{Y+1/2} deta / r.
+        let g = |s: f64, y: f64| ((y + 0.5) / s.abs()).asinh() - ((y - 0.5) / s.abs()).asinh();
+        let width = 2 * nx - 1;
+        let mut first_order_err = 0.0f64;
+        for m in 0..l.len() {
+            let (x, y) = ((m % width) as f64 - (nx - 1) as f64, (m / width) as f64);
+            let slope = (g(x + 0.5, y) - g(x - 0.5, y)) / PI;
+            let want = l[m] + 0.7 * 1e-9 * cell * slope;
+            first_order_err = first_order_err.max((near_slow[m] - want).abs() / peak);
+        }
+        eprintln!("l = 1e-9 cell against L + l dL/dX: {first_order_err:.2e} of the peak");
+        assert!(first_order_err < 1e-13, "{first_order_err}");
         assert!(fast_err < 1e-11, "{fast_err}");
     }
 
@@ -799,6 +814,7 @@ mod tests {
                 let want = brute_force(di as f64, dj as f64, lambda);
                 let err = (got - want).abs() / peak;
                 worst = worst.max(err);
+                eprintln!("lambda {lambda:e} ({di}, {dj}): {err:.1e}");
                 assert!(
                     err < 1e-10,
                     "lambda {lambda} ({di}, {dj}): {got} vs {want}, {err:.1e}"
