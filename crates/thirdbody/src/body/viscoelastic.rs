@@ -874,6 +874,22 @@ mod tests {
     }
 
     #[test]
+    fn viscoelastic_body_branches_superpose() {
+        // Three branches at once (one relaxed, one creeping, one frozen at this
+        // speed) equal the glassy kernel plus each branch alone.
+        let (cell, nx, ny, v) = (0.3, 7, 5, 2.0);
+        let all = series(0.2, &[(0.3, 1e-120), (0.5, 0.4), (0.7, 1e120)]);
+        let k = steady_sliding_kernel(&all, cell, nx, ny, v).unwrap();
+        let l = elastic_layout(cell, nx, ny);
+        let creeping = steady_sliding_kernel(&series(0.0, &[(0.5, 0.4)]), cell, nx, ny, v).unwrap();
+        let peak = max_abs(&k);
+        for m in 0..k.len() {
+            let want = 0.5 * l[m] + creeping[m];
+            assert!((k[m] - want).abs() < 1e-14 * peak, "{m}");
+        }
+    }
+
+    #[test]
     fn viscoelastic_body_tiny_and_tall_grids_match_brute_force() {
         for (nx, ny) in [(1, 1), (2, 7), (1, 3)] {
             for lambda in [0.05, 3.0, 200.0] {
