@@ -449,6 +449,8 @@ impl Solution {
     /// per point) would not fit in the memory available. Runs without the GIL, a few
     /// depths at a time: Ctrl-C stops it and raises `KeyboardInterrupt`.
     #[pyo3(signature = (section, *, y=0.0, z=0.0, depths=None, interface=0, side="above"))]
+    // Each Python keyword argument is one parameter.
+    #[allow(clippy::too_many_arguments)]
     fn stresses<'py>(
         &self,
         py: Python<'py>,
