@@ -36,7 +36,9 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 use thirdbody::body::layered::{Base, BaseContact, Ply, Stack};
-use thirdbody::{solve, Body, Case, Elastic, GridSpec, Loading, Slider, SolverParams, Units};
+mod cases;
+
+use thirdbody::{solve, Body, Elastic, SolverParams};
 
 /// One exact case: (bonded?, nu, chi, h, delta, F_exact, f_exact, a_exact / h).
 type Exact = (bool, f64, f64, f64, f64, f64, f64, f64);
@@ -111,30 +113,18 @@ fn indent(case: &Exact, cells: usize) -> Measured {
     } else {
         BaseContact::Frictionless
     };
-    let case = Case {
-        slider: Slider::Sphere { radius: RADIUS },
-        body: Body::Layered(Stack {
-            layers: vec![Ply {
-                material: Elastic {
-                    young: YOUNG,
-                    poisson,
-                },
-                thickness,
-            }],
-            base: Base::Rigid(base),
-        }),
-        layer: None,
-        loading: Loading {
-            normal_load: load,
-            velocity: None,
-        },
-        grid: GridSpec {
-            cells: [cells, cells],
-            half_width: None,
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    };
+    // The shared sphere of radius 1 (= RADIUS) under the load on the default grid.
+    let mut case = cases::sphere(load, cells);
+    case.body = Body::Layered(Stack {
+        layers: vec![Ply {
+            material: Elastic {
+                young: YOUNG,
+                poisson,
+            },
+            thickness,
+        }],
+        base: Base::Rigid(base),
+    });
     let start = Instant::now();
     let solution = solve(&case, &SolverParams::default()).expect("the solve converges");
     let seconds = start.elapsed().as_secs_f64();

@@ -46,27 +46,63 @@ use crate::case::Elastic;
 /// tau_yz]` everywhere in this module.
 pub const COMPONENTS: usize = 6;
 
+/// The transcendental terms every corner primitive shares (one evaluation serves
+/// [`corner_primitives`] and [`corner_primitives_split`]).
+struct CornerTerms {
+    u2: f64,
+    v2: f64,
+    z2: f64,
+    rho: f64,
+    uv: f64,
+    a: f64,
+    h1: f64,
+    l: f64,
+}
+
+impl CornerTerms {
+    #[inline]
+    fn new(u: f64, v: f64, z: f64) -> Self {
+        let (u2, v2, z2) = (u * u, v * v, z * z);
+        let rho = (u2 + v2 + z2).sqrt();
+        let uv = u * v;
+        // atan(y / x) with x >= 0, continued by +-pi/2 (or 0) at x = 0: atan2
+        // without its quadrant logic, which is slower.
+        let half_atan = |y: f64, x: f64| {
+            if x > 0.0 {
+                (y / x).atan()
+            } else if y == 0.0 {
+                0.0
+            } else {
+                0.5 * PI * y.signum()
+            }
+        };
+        CornerTerms {
+            u2,
+            v2,
+            z2,
+            rho,
+            uv,
+            a: half_atan(uv, z * rho),
+            h1: half_atan(uv * (u2 + v2), (rho + z) * (u2 * rho + z * v2)),
+            l: (rho + z).ln(),
+        }
+    }
+}
+
 /// The six corner primitives `G_c(u, v)` of the stress components (before the
 /// factor `1 / (2 pi)`), valid for any signs of `u`, `v` and `z >= 0`.
 #[inline]
 fn corner_primitives(u: f64, v: f64, z: f64, nu: f64) -> [f64; COMPONENTS] {
-    let (u2, v2, z2) = (u * u, v * v, z * z);
-    let rho = (u2 + v2 + z2).sqrt();
-    let uv = u * v;
-    // atan(y / x) with x >= 0, continued by +-pi/2 (or 0) at x = 0: atan2 without
-    // its quadrant logic, which is slower.
-    let half_atan = |y: f64, x: f64| {
-        if x > 0.0 {
-            (y / x).atan()
-        } else if y == 0.0 {
-            0.0
-        } else {
-            0.5 * PI * y.signum()
-        }
-    };
-    let a = half_atan(uv, z * rho);
-    let h1 = half_atan(uv * (u2 + v2), (rho + z) * (u2 * rho + z * v2));
-    let l = (rho + z).ln();
+    let CornerTerms {
+        u2,
+        v2,
+        z2,
+        rho,
+        uv,
+        a,
+        h1,
+        l,
+    } = CornerTerms::new(u, v, z);
     let m = 1.0 - 2.0 * nu;
     if z2 == 0.0 {
         // The surface: the terms carrying a factor z vanish (no shear traction).
@@ -365,21 +401,16 @@ impl FoldedCorners {
 /// derivative in nu, from one evaluation of the transcendental terms.
 #[inline]
 fn corner_primitives_split(u: f64, v: f64, z: f64) -> ([f64; COMPONENTS], [f64; COMPONENTS]) {
-    let (u2, v2, z2) = (u * u, v * v, z * z);
-    let rho = (u2 + v2 + z2).sqrt();
-    let uv = u * v;
-    let half_atan = |y: f64, x: f64| {
-        if x > 0.0 {
-            (y / x).atan()
-        } else if y == 0.0 {
-            0.0
-        } else {
-            0.5 * PI * y.signum()
-        }
-    };
-    let a = half_atan(uv, z * rho);
-    let h1 = half_atan(uv * (u2 + v2), (rho + z) * (u2 * rho + z * v2));
-    let l = (rho + z).ln();
+    let CornerTerms {
+        u2,
+        v2,
+        z2,
+        rho,
+        uv,
+        a,
+        h1,
+        l,
+    } = CornerTerms::new(u, v, z);
     let slope = [-2.0 * a + 2.0 * h1, -2.0 * h1, 0.0, 2.0 * l, 0.0, 0.0];
     if z2 == 0.0 {
         return ([-h1, -(a - h1), -a, -l, 0.0, 0.0], slope);
