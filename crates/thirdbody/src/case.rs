@@ -4,6 +4,7 @@
 //! physical range and names the field in the error; the solver assumes a valid case.
 
 use crate::body::layered::{Base, Ply, Stack};
+use crate::body::solid::ViscoelasticHalfSpace;
 use crate::error::{require_poisson, require_positive, Error, Result};
 use crate::layer::Layer;
 use crate::provenance::{self, Reference};
@@ -49,6 +50,9 @@ pub enum Body {
     /// ([`crate::body::layered`]); a coating (paper eq. 5 and 10) is a stack of one
     /// layer on a half-space ([`Body::coated`]).
     Layered(Stack),
+    /// A linear viscoelastic half-space ([`crate::body::solid`]): in steady
+    /// sliding its kernel depends on the speed and is not even in x.
+    Viscoelastic(ViscoelasticHalfSpace),
 }
 
 impl Body {
@@ -72,24 +76,37 @@ impl Body {
                 Base::HalfSpace(m) => Some(m),
                 Base::Rigid(_) => None,
             },
+            Body::Viscoelastic(_) => None,
         }
     }
 
     /// The modulus that sets the solver's stress unit: the half-space's Young's
-    /// modulus (the paper's E2), or on a rigid base the stiffest layer's.
+    /// modulus (the paper's E2), on a rigid base the stiffest layer's, and the
+    /// relaxed modulus of a viscoelastic body.
     pub fn reference_modulus(&self) -> f64 {
         match self {
             Body::Homogeneous(m) => m.young,
             Body::Layered(stack) => stack.reference_modulus(),
+            Body::Viscoelastic(solid) => solid.relaxed_modulus(),
         }
     }
 
-    /// The same body with lengths divided by `length` and moduli by `modulus` (the
-    /// solver's units, `units.rs`).
-    pub fn scaled(&self, length: f64, modulus: f64) -> Body {
+    /// A time that sets the solver's time unit when no layer does: the geometric
+    /// mean of a viscoelastic body's retardation times (`None` for elastic bodies).
+    pub fn time_scale(&self) -> Option<f64> {
+        match self {
+            Body::Homogeneous(_) | Body::Layered(_) => None,
+            Body::Viscoelastic(solid) => Some(solid.time_scale()),
+        }
+    }
+
+    /// The same body with lengths divided by `length`, moduli by `modulus` and
+    /// times by `time` (the solver's units, `units.rs`).
+    pub fn scaled(&self, length: f64, modulus: f64, time: f64) -> Body {
         match self {
             Body::Homogeneous(m) => Body::Homogeneous(m.scaled(modulus)),
             Body::Layered(stack) => Body::Layered(stack.scaled(length, modulus)),
+            Body::Viscoelastic(solid) => Body::Viscoelastic(solid.scaled(modulus, time)),
         }
     }
 
@@ -114,6 +131,7 @@ impl Body {
                 "at least one layer (a half-space alone is a [substrate] without layers)",
             )),
             Body::Layered(stack) => stack.validate(),
+            Body::Viscoelastic(solid) => solid.validate(),
         }
     }
 }
@@ -197,6 +215,16 @@ impl Case {
                 return Err(Error::invalid("loading.velocity", v, "a number >= 0"));
             }
         }
+        if let Body::Viscoelastic(_) = self.body {
+            if self.loading.velocity.is_none() {
+                return Err(Error::MissingField {
+                    field: "loading.velocity".into(),
+                    why: "a viscoelastic body needs the sliding velocity (0 for its relaxed \
+                          response, inf for its glassy one)"
+                        .into(),
+                });
+            }
+        }
         for (k, &n) in self.grid.cells.iter().enumerate() {
             if n < crate::grid::MIN_CELLS {
                 return Err(Error::invalid(
@@ -258,13 +286,21 @@ impl Case {
 
     /// The method a solve of this case uses when the `[solver]` asks for
     /// `requested` (`None`: the automatic choice): Polonsky–Keer conjugate gradients
-    /// when the problem is symmetric (no layer, or a layer that is a linear spring
-    /// bed at the case's velocity: [`Layer::is_spring_bed`]), semi-smooth Newton
-    /// otherwise ([`crate::solve_problem`]).
+    /// when the problem is symmetric (a body whose kernel is even at the case's
+    /// velocity, [`crate::body::BodyModel::kernel_is_even`], and no layer or a layer
+    /// that is a linear spring bed at that velocity: [`Layer::is_spring_bed`]),
+    /// semi-smooth Newton otherwise ([`crate::solve_problem`]).
     pub fn solver_method(&self, requested: Option<Method>) -> Method {
-        requested.unwrap_or(match &self.layer {
-            Some(layer) if !layer.is_spring_bed(self.velocity()) => Method::SemismoothNewton,
-            _ => Method::PolonskyKeer,
+        let velocity = self.velocity();
+        let symmetric_layer = self
+            .layer
+            .as_ref()
+            .is_none_or(|layer| layer.is_spring_bed(velocity));
+        let even_body = self.body.model().kernel_is_even(velocity);
+        requested.unwrap_or(if symmetric_layer && even_body {
+            Method::PolonskyKeer
+        } else {
+            Method::SemismoothNewton
         })
     }
 

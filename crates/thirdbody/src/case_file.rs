@@ -15,6 +15,7 @@ use serde::de::{self, DeserializeSeed, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
 
 use crate::body::layered::{Base, BaseContact, Ply, Stack};
+use crate::body::solid::{SolidRheology, ViscoelasticHalfSpace};
 use crate::case::{Body, Case, Elastic, GridSpec, Loading, Units};
 use crate::contact::SolverParams;
 use crate::error::{require_positive, Error, Result};
@@ -47,7 +48,7 @@ impl CaseFile {
 struct RawCase {
     units: Option<RawUnits>,
     slider: Option<RawSlider>,
-    substrate: Option<RawElastic>,
+    substrate: Option<RawSubstrate>,
     coating: Option<RawCoating>,
     body: Option<RawBody>,
     layer: Option<RawLayer>,
@@ -83,11 +84,200 @@ struct RawSlider {
     cell_size: Option<f64>,
 }
 
+/// `[substrate]`: an elastic half-space (`young`, `poisson`) or, with a
+/// `rheology`, a viscoelastic one (`crate::body::solid`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawElastic {
+struct RawSubstrate {
+    rheology: Option<RawSolid>,
     young: Option<f64>,
     poisson: Option<f64>,
+    glassy_modulus: Option<f64>,
+    relaxed_modulus: Option<f64>,
+    relaxation_time: Option<f64>,
+    order: Option<f64>,
+    branch_count: Option<usize>,
+    glassy_compliance: Option<f64>,
+    branch_compliances: Option<Vec<f64>>,
+    equilibrium_modulus: Option<f64>,
+    branch_moduli: Option<Vec<f64>>,
+    branch_times: Option<Vec<f64>>,
+}
+
+/// `[substrate] rheology`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum RawSolid {
+    Elastic,
+    Zener,
+    FractionalZener,
+    Prony,
+    RelaxationProny,
+}
+
+impl RawSolid {
+    fn name(self) -> &'static str {
+        match self {
+            RawSolid::Elastic => "elastic",
+            RawSolid::Zener => "zener",
+            RawSolid::FractionalZener => "fractional_zener",
+            RawSolid::Prony => "prony",
+            RawSolid::RelaxationProny => "relaxation_prony",
+        }
+    }
+
+    /// The keys besides `rheology` and `poisson` it takes.
+    fn keys(self) -> &'static [&'static str] {
+        match self {
+            RawSolid::Elastic => &["young"],
+            RawSolid::Zener => &["glassy_modulus", "relaxed_modulus", "relaxation_time"],
+            RawSolid::FractionalZener => &[
+                "glassy_modulus",
+                "relaxed_modulus",
+                "relaxation_time",
+                "order",
+                "branch_count",
+            ],
+            RawSolid::Prony => &["glassy_compliance", "branch_compliances", "branch_times"],
+            RawSolid::RelaxationProny => &["equilibrium_modulus", "branch_moduli", "branch_times"],
+        }
+    }
+}
+
+impl RawSubstrate {
+    /// The keys given, besides `rheology` and `poisson`.
+    fn given(&self) -> Vec<&'static str> {
+        [
+            ("young", self.young.is_some()),
+            ("glassy_modulus", self.glassy_modulus.is_some()),
+            ("relaxed_modulus", self.relaxed_modulus.is_some()),
+            ("relaxation_time", self.relaxation_time.is_some()),
+            ("order", self.order.is_some()),
+            ("branch_count", self.branch_count.is_some()),
+            ("glassy_compliance", self.glassy_compliance.is_some()),
+            ("branch_compliances", self.branch_compliances.is_some()),
+            ("equilibrium_modulus", self.equilibrium_modulus.is_some()),
+            ("branch_moduli", self.branch_moduli.is_some()),
+            ("branch_times", self.branch_times.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(k, given)| given.then_some(k))
+        .collect()
+    }
+}
+
+/// The viscoelastic half-space of a `[substrate]` with a `rheology` other than
+/// `"elastic"`; errors name the key.
+fn viscoelastic_substrate(s: RawSubstrate, rheology: RawSolid) -> Result<ViscoelasticHalfSpace> {
+    let name = rheology.name();
+    for key in s.given() {
+        unused(
+            !rheology.keys().contains(&key),
+            &format!("substrate.{key}"),
+            &format!(
+                "rheology = \"{name}\" takes {} and poisson",
+                rheology.keys().join(", ")
+            ),
+        )?;
+    }
+    let needs = |v: Option<f64>, key: &str, what: &str| {
+        need(
+            v,
+            &format!("substrate.{key}"),
+            &format!("a {name} substrate needs {what}"),
+        )
+    };
+    let needs_list = |v: Option<Vec<f64>>, key: &str, what: &str| {
+        need(
+            v,
+            &format!("substrate.{key}"),
+            &format!("a {name} substrate needs {what}"),
+        )
+    };
+    let moduli = |s: &RawSubstrate| -> Result<(f64, f64, f64)> {
+        Ok((
+            needs(
+                s.glassy_modulus,
+                "glassy_modulus",
+                "its glassy (instantaneous) Young's modulus",
+            )?,
+            needs(
+                s.relaxed_modulus,
+                "relaxed_modulus",
+                "its relaxed (long-time) Young's modulus",
+            )?,
+            needs(
+                s.relaxation_time,
+                "relaxation_time",
+                "its relaxation time (> 0)",
+            )?,
+        ))
+    };
+    let solid = match rheology {
+        RawSolid::Elastic => unreachable!("an elastic substrate is not viscoelastic"),
+        RawSolid::Zener => {
+            let (glassy_modulus, relaxed_modulus, relaxation_time) = moduli(&s)?;
+            SolidRheology::Zener {
+                glassy_modulus,
+                relaxed_modulus,
+                relaxation_time,
+            }
+        }
+        RawSolid::FractionalZener => {
+            let (glassy_modulus, relaxed_modulus, relaxation_time) = moduli(&s)?;
+            SolidRheology::FractionalZener {
+                glassy_modulus,
+                relaxed_modulus,
+                relaxation_time,
+                order: needs(s.order, "order", "its order (0 < order <= 1)")?,
+                branch_count: s.branch_count,
+            }
+        }
+        RawSolid::Prony => SolidRheology::Prony {
+            glassy_compliance: needs(
+                s.glassy_compliance,
+                "glassy_compliance",
+                "its glassy tensile creep compliance (>= 0)",
+            )?,
+            branch_compliances: needs_list(
+                s.branch_compliances,
+                "branch_compliances",
+                "its branches' tensile creep compliances (>= 0)",
+            )?,
+            branch_times: needs_list(
+                s.branch_times,
+                "branch_times",
+                "one retardation time (> 0) per branch",
+            )?,
+        },
+        RawSolid::RelaxationProny => SolidRheology::RelaxationProny {
+            equilibrium_modulus: needs(
+                s.equilibrium_modulus,
+                "equilibrium_modulus",
+                "its equilibrium (long-time) Young's modulus (> 0)",
+            )?,
+            branch_moduli: needs_list(
+                s.branch_moduli,
+                "branch_moduli",
+                "its branches' Young's moduli (>= 0)",
+            )?,
+            branch_times: needs_list(
+                s.branch_times,
+                "branch_times",
+                "one relaxation time (> 0) per branch",
+            )?,
+        },
+    };
+    let body = ViscoelasticHalfSpace {
+        rheology: solid,
+        poisson: needs(
+            s.poisson,
+            "poisson",
+            "its Poisson's ratio (-1 < poisson < 0.5)",
+        )?,
+    };
+    body.validate()?;
+    Ok(body)
 }
 
 #[derive(Debug, Deserialize)]
@@ -484,10 +674,19 @@ fn unused(present: bool, field: &str, why: &str) -> Result<()> {
 /// The body from `[substrate]`, `[coating]` (one layer on the substrate) or `[body]`
 /// with `[[body.layers]]` (docs/case-file.md, "The body").
 fn body(
-    substrate: Option<RawElastic>,
+    substrate: Option<RawSubstrate>,
     coating: Option<RawCoating>,
     raw: Option<RawBody>,
 ) -> Result<Body> {
+    let rheology = substrate.as_ref().and_then(|s| s.rheology);
+    if let Some(r) = rheology.filter(|r| *r != RawSolid::Elastic) {
+        let why = "layers on a viscoelastic substrate are not supported: its kernel is \
+                   that of a homogeneous half-space";
+        unused(coating.is_some(), "coating", why)?;
+        unused(raw.is_some(), "body", why)?;
+        let s = substrate.expect("a rheology comes with its [substrate]");
+        return Ok(Body::Viscoelastic(viscoelastic_substrate(s, r)?));
+    }
     let rigid = matches!(
         raw.as_ref().and_then(|b| b.base.as_ref()),
         Some(RawBase::Rigid)
@@ -505,6 +704,14 @@ fn body(
             "substrate",
             "young (> 0) and poisson (-1 < poisson < 0.5)",
         )?;
+        for key in s.given() {
+            unused(
+                key != "young",
+                &format!("substrate.{key}"),
+                "an elastic substrate takes young and poisson; name a rheology \
+                 (substrate.rheology = \"zener\", ...) for a viscoelastic one",
+            )?;
+        }
         let m = elastic(s.young, s.poisson, "substrate")?;
         m.validate("substrate")?;
         Some(m)

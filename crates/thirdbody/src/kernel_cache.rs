@@ -24,13 +24,15 @@ const DEFAULT_CAPACITY: usize = 8;
 /// not kept.
 const DEFAULT_BYTE_BUDGET: usize = 256 << 20;
 
-/// What a surface-kernel spectrum depends on: the body, the grid size and the cell
-/// size (bitwise).
+/// What a surface-kernel spectrum depends on: the body, the grid size, the cell
+/// size (bitwise) and, for a body whose kernel depends on it, the sliding speed
+/// (bitwise).
 #[derive(Debug, Clone, PartialEq)]
 struct SpectrumKey {
     body: Body,
     cells: [usize; 2],
     cell_bits: u64,
+    velocity_bits: Option<u64>,
 }
 
 /// What a DC-FFT plan depends on: the grid size and the parallelism.
@@ -115,19 +117,25 @@ impl KernelCache {
         plan
     }
 
-    /// The surface kernel of `body` on `grid`'s cells, for `plan` (which must be for
-    /// `grid`'s size), unless held: given by its quadrant, with no spectrum built
+    /// The surface kernel of `body` on `grid`'s cells at sliding speed `velocity`,
+    /// for `plan` (which must be for `grid`'s size), unless held: an even kernel
+    /// given by its quadrant, with no spectrum built
     /// ([`crate::convolution::ConvolutionPlan::even_kernel`]).
     pub fn surface_spectrum(
         &mut self,
         body: &Body,
         grid: &Grid,
         plan: &Arc<ConvolutionPlan>,
+        velocity: f64,
     ) -> Result<Arc<KernelSpectrum>> {
         let key = SpectrumKey {
             body: body.clone(),
             cells: [grid.nx, grid.ny],
             cell_bits: grid.cell.to_bits(),
+            velocity_bits: body
+                .model()
+                .kernel_depends_on_velocity()
+                .then_some(velocity.to_bits()),
         };
         if let Some(k) = self.spectra.iter().position(|(k, _)| *k == key) {
             let entry = self.spectra.remove(k);
@@ -136,7 +144,7 @@ impl KernelCache {
             self.spectra_reused += 1;
             return Ok(spectrum);
         }
-        let spectrum = Arc::new(surface_kernel(body, grid, plan)?);
+        let spectrum = Arc::new(surface_kernel(body, grid, plan, velocity)?);
         self.spectra_built += 1;
         if spectrum.bytes() <= self.byte_budget {
             keep(
@@ -187,16 +195,24 @@ mod tests {
         let grid = Grid::centred(16, 12, 0.5, [0.0, 0.0]).unwrap();
         let mut cache = KernelCache::new();
         let plan = cache.plan(16, 12, Parallelism::Sequential);
-        let first = cache.surface_spectrum(&coated(0.37), &grid, &plan).unwrap();
-        let again = cache.surface_spectrum(&coated(0.37), &grid, &plan).unwrap();
+        let first = cache
+            .surface_spectrum(&coated(0.37), &grid, &plan, 1.0)
+            .unwrap();
+        let again = cache
+            .surface_spectrum(&coated(0.37), &grid, &plan, 1.0)
+            .unwrap();
         assert!(Arc::ptr_eq(&first, &again));
-        let other = cache.surface_spectrum(&coated(0.38), &grid, &plan).unwrap();
+        let other = cache
+            .surface_spectrum(&coated(0.38), &grid, &plan, 1.0)
+            .unwrap();
         assert!(!Arc::ptr_eq(&first, &other));
         assert_eq!(cache.len(), 2);
-        let fresh = surface_kernel(&coated(0.37), &grid, &plan).unwrap();
+        let fresh = surface_kernel(&coated(0.37), &grid, &plan, 1.0).unwrap();
         assert_eq!(format!("{fresh:?}"), format!("{first:?}"));
         // A bad body is an error, and nothing is kept for it.
-        assert!(cache.surface_spectrum(&coated(-1.0), &grid, &plan).is_err());
+        assert!(cache
+            .surface_spectrum(&coated(-1.0), &grid, &plan, 1.0)
+            .is_err());
         assert_eq!(cache.len(), 2);
         // Two built, one handed out again; the failed one is not counted.
         assert_eq!((cache.spectra_built(), cache.spectra_reused()), (2, 1));
@@ -208,13 +224,16 @@ mod tests {
         let mut cache = KernelCache::with_capacity(2);
         let plan = cache.plan(8, 8, Parallelism::Sequential);
         for t in [0.1, 0.2, 0.3] {
-            cache.surface_spectrum(&coated(t), &grid, &plan).unwrap();
+            cache
+                .surface_spectrum(&coated(t), &grid, &plan, 1.0)
+                .unwrap();
         }
         assert_eq!(cache.len(), 2);
         cache.clear();
         assert!(cache.is_empty());
         let mut none = KernelCache::with_capacity(0);
-        none.surface_spectrum(&coated(0.1), &grid, &plan).unwrap();
+        none.surface_spectrum(&coated(0.1), &grid, &plan, 1.0)
+            .unwrap();
         assert!(none.is_empty());
     }
 }

@@ -25,6 +25,9 @@ pub trait InfluenceOperator {
     }
     /// The diagonal coefficient (displacement of a cell under its own unit pressure).
     fn self_coefficient(&self) -> f64;
+    /// Whether `K` is symmetric (a kernel even in x and y); conjugate gradients need
+    /// it, a body that creeps in steady sliding does not give it.
+    fn is_symmetric(&self) -> bool;
     /// `w = K p`, both of [`Self::len`] cells (the solvers' own vectors; another
     /// length is a programming error and panics, as a slice copy does).
     fn apply(&mut self, p: &[f64], w: &mut [f64]);
@@ -128,6 +131,9 @@ impl ConvolutionOperator {
 }
 
 impl InfluenceOperator for ConvolutionOperator {
+    fn is_symmetric(&self) -> bool {
+        self.kernel.is_even()
+    }
     fn len(&self) -> usize {
         self.convolver.plan().nx() * self.convolver.plan().ny()
     }
@@ -184,6 +190,7 @@ impl InfluenceOperator for ConvolutionOperator {
 pub struct DenseOperator {
     n: usize,
     values: Vec<f64>,
+    symmetric: bool,
 }
 
 impl DenseOperator {
@@ -195,7 +202,12 @@ impl DenseOperator {
                 values[i * n + j] = kernel(i, j);
             }
         }
-        DenseOperator { n, values }
+        let symmetric = (0..n).all(|i| (0..i).all(|j| values[i * n + j] == values[j * n + i]));
+        DenseOperator {
+            n,
+            values,
+            symmetric,
+        }
     }
 
     /// Entry `(i, j)`.
@@ -205,6 +217,9 @@ impl DenseOperator {
 }
 
 impl InfluenceOperator for DenseOperator {
+    fn is_symmetric(&self) -> bool {
+        self.symmetric
+    }
     fn len(&self) -> usize {
         self.n
     }
@@ -248,6 +263,9 @@ impl<'a> OnCellMeans<'a> {
 }
 
 impl InfluenceOperator for OnCellMeans<'_> {
+    fn is_symmetric(&self) -> bool {
+        self.entries.is_empty() && self.inner.is_symmetric()
+    }
     fn len(&self) -> usize {
         self.inner.len()
     }

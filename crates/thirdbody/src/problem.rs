@@ -29,6 +29,8 @@ pub struct ContactProblem {
     pub(crate) shape: Vec<f64>,
     pub(crate) slope: Vec<f64>,
     pub(crate) load: f64,
+    /// The sliding speed (a viscoelastic body's kernel and dissipation use it).
+    pub(crate) velocity: f64,
     pub(crate) estimate: ContactEstimate,
 }
 
@@ -53,14 +55,14 @@ impl Case {
         parallelism: Parallelism,
     ) -> Result<ContactProblem> {
         let plan = kernels.plan(grid.nx, grid.ny, parallelism);
-        let spectrum = kernels.surface_spectrum(&self.body, grid, &plan)?;
+        let velocity = self.velocity();
+        let spectrum = kernels.surface_spectrum(&self.body, grid, &plan, velocity)?;
         let influence = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum))?;
         let n = grid.len();
         let mut shape = vec![0.0; n];
         let mut slope = vec![0.0; n];
         self.slider
             .sample_rows(grid, &mut shape, &mut slope, parallelism)?;
-        let velocity = self.velocity();
         Ok(ContactProblem {
             grid: *grid,
             body: self.body.clone(),
@@ -72,6 +74,7 @@ impl Case {
             shape,
             slope,
             load: self.loading.normal_load,
+            velocity,
             estimate: ContactEstimate::of(self),
         })
     }
@@ -111,6 +114,7 @@ impl ContactProblem {
             shape,
             slope,
             load: case.loading.normal_load,
+            velocity: case.velocity(),
             estimate: ContactEstimate::of(case),
         })
     }
@@ -135,9 +139,13 @@ impl ContactProblem {
         self.layer.as_deref()
     }
 
-    /// `Some(c_w)` when the operator is symmetric positive definite (`K + c_w I`:
+    /// `Some(c_w)` when the operator is symmetric positive definite (`K + c_w I`
+    /// with a symmetric body operator `K`, [`InfluenceOperator::is_symmetric`], and
     /// no layer, c_w = 0, or a creep-free linear layer): conjugate gradients apply.
     pub fn winkler_compliance(&self) -> Option<f64> {
+        if !self.influence.is_symmetric() {
+            return None;
+        }
         match &self.layer {
             None => Some(0.0),
             Some(l) => l.winkler_compliance(),

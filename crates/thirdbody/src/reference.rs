@@ -1,7 +1,7 @@
 //! The paper's own method, kept as a test oracle and a benchmark baseline (behind
 //! the cargo feature `reference`): the dense system (6) — influence matrix
 //! `A = A^(1) + A^(3)` (eq. 7), the body's part assembled entry by entry from the
-//! body's kernel formula ([`crate::body::ElasticBody`]; eq. 9 or 10) and the layer's
+//! body's kernel formula ([`crate::body::BodyModel`]; eq. 9 or 10) and the layer's
 //! part column by column from the layer's Jacobian (any rheology; for the paper's
 //! layer eq. 8 read with the loaded cell's compliance), plus the approach column and
 //! the load row — solved by dense LU inside an active-set loop: cells with negative
@@ -75,14 +75,14 @@ fn solve_dense_with(
     let grid = &problem.grid;
     let n = grid.len();
     let (nx, ny) = (grid.nx, grid.ny);
-    let quadrant = problem
+    let kernel = problem
         .body
         .model()
-        .surface_kernel_quadrant(grid.cell, nx, ny)?;
+        .surface_kernel(grid.cell, nx, ny, problem.velocity)?;
     let influence = Mat::<f64>::from_fn(n, n, |a, b| {
-        let di = (a % nx).abs_diff(b % nx);
-        let dj = (a / nx).abs_diff(b / nx);
-        quadrant[dj * nx + di]
+        let di = (a % nx) as i64 - (b % nx) as i64;
+        let dj = (a / nx) as i64 - (b / nx) as i64;
+        kernel.at(di, dj)
     });
     // The body carries each cell's mean pressure: K W, column j being
     // `K_j W_jj + sum over edges k with neighbour j of K_k b_k`.

@@ -62,7 +62,10 @@ impl Scales {
             Slider::HeightMap(m) => m.cell_size * m.nx.max(m.ny) as f64,
             other => other.equivalent_radius(),
         };
-        let time = (case.layer.as_ref()).map_or(1.0, |layer| layer.rheology.time_scale());
+        let time = match &case.layer {
+            Some(layer) => layer.rheology.time_scale(),
+            None => case.body.time_scale().unwrap_or(1.0),
+        };
         Scales {
             length: power_of_two_near(length),
             modulus: power_of_two_near(case.body.reference_modulus()),
@@ -115,7 +118,7 @@ impl Scales {
 
     /// A body in these units.
     pub fn body(&self, body: &Body) -> Body {
-        body.scaled(self.length, self.modulus)
+        body.scaled(self.length, self.modulus, self.time)
     }
 
     fn slider(&self, slider: &Slider) -> Slider {

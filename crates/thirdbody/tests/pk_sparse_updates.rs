@@ -29,6 +29,9 @@ impl InfluenceOperator for Watched {
     fn self_coefficient(&self) -> f64 {
         self.inner.self_coefficient()
     }
+    fn is_symmetric(&self) -> bool {
+        self.inner.is_symmetric()
+    }
     fn apply(&mut self, p: &[f64], w: &mut [f64]) {
         self.inner.apply(p, w)
     }
@@ -52,7 +55,9 @@ fn solve_on(case: &Case, grid: &Grid, allow_sparse: bool) -> (Solution, usize) {
     };
     let mut kernels = KernelCache::new();
     let plan = kernels.plan(grid.nx(), grid.ny(), params.parallelism);
-    let spectrum = kernels.surface_spectrum(&case.body, grid, &plan).unwrap();
+    let spectrum = kernels
+        .surface_spectrum(&case.body, grid, &plan, case.velocity())
+        .unwrap();
     let shape = case
         .assemble(grid, &mut kernels, params.parallelism)
         .unwrap()

@@ -12,6 +12,7 @@ use std::sync::OnceLock;
 
 use proptest::prelude::*;
 use thirdbody::body::layered::{Base, Ply, Stack};
+use thirdbody::body::{SolidRheology, ViscoelasticHalfSpace};
 use thirdbody::layer::law::Table;
 use thirdbody::stress::StressRequest;
 use thirdbody::{
@@ -59,6 +60,21 @@ fn rescale(case: &Case, f: &Factors) -> Case {
                 Base::HalfSpace(m) => Base::HalfSpace(elastic(m)),
                 rigid => rigid,
             },
+        }),
+        Body::Viscoelastic(solid) => Body::Viscoelastic(ViscoelasticHalfSpace {
+            rheology: match &solid.rheology {
+                SolidRheology::Zener {
+                    glassy_modulus,
+                    relaxed_modulus,
+                    relaxation_time,
+                } => SolidRheology::Zener {
+                    glassy_modulus: glassy_modulus * f.modulus,
+                    relaxed_modulus: relaxed_modulus * f.modulus,
+                    relaxation_time: relaxation_time * f.time,
+                },
+                other => unimplemented!("rescaling {other:?}"),
+            },
+            poisson: solid.poisson,
         }),
     };
     c.slider = match &case.slider {

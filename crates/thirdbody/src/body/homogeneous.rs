@@ -7,9 +7,10 @@
 //! `1 / sqrt(u^2 + v^2)`), which stays finite on cell edges and corners, unlike
 //! the textbook logarithms whose arguments vanish there.
 
-use super::ElasticBody;
+use super::{BodyModel, SurfaceKernel};
 use crate::case::Elastic;
 use crate::error::Result;
+use crate::grid::Grid;
 use crate::provenance::{self, Reference};
 use crate::stress::{HomogeneousStressKernels, Side, StressKernels};
 use rayon::prelude::*;
@@ -21,14 +22,30 @@ pub struct HomogeneousHalfSpace {
     pub material: Elastic,
 }
 
-impl ElasticBody for HomogeneousHalfSpace {
-    fn surface_kernel_quadrant(&self, cell: f64, nx: usize, ny: usize) -> Result<Vec<f64>> {
-        Ok(homogeneous_surface_kernel_quadrant(
-            self.material,
-            cell,
+impl BodyModel for HomogeneousHalfSpace {
+    fn surface_kernel(
+        &self,
+        cell: f64,
+        nx: usize,
+        ny: usize,
+        _velocity: f64,
+    ) -> Result<SurfaceKernel> {
+        Ok(SurfaceKernel::Even {
+            quadrant: homogeneous_surface_kernel_quadrant(self.material, cell, nx, ny),
             nx,
-            ny,
-        ))
+        })
+    }
+
+    fn kernel_depends_on_velocity(&self) -> bool {
+        false
+    }
+
+    fn kernel_is_even(&self, _velocity: f64) -> bool {
+        true
+    }
+
+    fn dissipated_force(&self, _grid: &Grid, _pressure: &[f64], _velocity: f64) -> Result<f64> {
+        Ok(0.0)
     }
 
     fn stress_kernels(&self, _interface_side: Side) -> Box<dyn StressKernels> {

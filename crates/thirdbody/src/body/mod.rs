@@ -1,15 +1,18 @@
-//! Elastic bodies under the layer, seen through one small interface,
-//! [`ElasticBody`]: the influence kernel that maps a pressure uniform over one
-//! surface cell to the normal surface displacement at every cell centre (paper eq. 9
-//! for a homogeneous half-space, eq. 10 for a coated one, generalised to any stack of
-//! layers), the stress kernels at a depth, the depths of material interfaces, and the
-//! modulus the automatic window needs. A case's [`Body`] is plain data; [`Body::model`] is the one place that
+//! The bodies under the layer, seen through one small interface, [`BodyModel`]:
+//! the influence kernel that maps a pressure uniform over one surface cell to the
+//! normal surface displacement at every cell centre (paper eq. 9 for a homogeneous
+//! half-space, eq. 10 for a coated one, generalised to any stack of layers, and the
+//! steady-sliding kernel of a viscoelastic half-space), whether that kernel is even
+//! and whether it depends on the sliding speed, the power the body dissipates, the
+//! stress kernels at a depth, the depths of material interfaces, and the modulus the
+//! automatic window needs. A case's [`Body`] is plain data; [`Body::model`] is the one place that
 //! picks the implementation. The solvers never see more than the kernel's DC-FFT
 //! spectrum (built through [`crate::KernelCache`]).
 
 pub mod homogeneous;
 pub mod layered;
 pub(crate) mod quadrature;
+pub mod solid;
 pub mod stack;
 #[cfg(test)]
 pub(crate) mod two_layer_oracle;
@@ -18,7 +21,9 @@ pub mod viscoelastic;
 use std::sync::Arc;
 
 pub use homogeneous::HomogeneousHalfSpace;
+pub use solid::{SolidRheology, ViscoelasticHalfSpace};
 pub use stack::StackBody;
+pub use viscoelastic::ViscoelasticBody;
 
 /// Which side of an interface between two materials a depth equal to the
 /// interface's is read on (stresses that jump there: sigma_x, sigma_y, tau_xy).
@@ -38,13 +43,70 @@ use crate::grid::Grid;
 use crate::provenance::Reference;
 use crate::stress::StressKernels;
 
-/// An elastic body as the solvers and the stress sections see it.
-pub trait ElasticBody: std::fmt::Debug + Send + Sync {
-    /// The surface influence kernel on square cells of side `cell`, on one quadrant
-    /// of offsets: `[dj * nx + di]` is the normal displacement at the centre of the
-    /// cell `(di, dj)` cells away from a cell under unit pressure, `0 <= di < nx`,
-    /// `0 <= dj < ny` (the kernel is even in both offsets).
-    fn surface_kernel_quadrant(&self, cell: f64, nx: usize, ny: usize) -> Result<Vec<f64>>;
+/// The surface influence kernel of a body on square cells: the normal displacement
+/// at the centre of the cell `(di, dj)` cells away from a cell under unit pressure
+/// (`di`, `dj` the field cell's index minus the loaded cell's), stored by the
+/// symmetry it has. Every kernel is even in `dj` (the sliding direction is x).
+#[derive(Debug, Clone, PartialEq)]
+pub enum SurfaceKernel {
+    /// Even in `di` and `dj` (an elastic body, or a viscoelastic one at zero or
+    /// infinite speed): `quadrant[dj * nx + di]` for `0 <= di < nx`, `0 <= dj < ny`.
+    Even {
+        /// The quadrant.
+        quadrant: Vec<f64>,
+        /// Cells along x.
+        nx: usize,
+    },
+    /// Even in `dj` only (a body that creeps in steady sliding):
+    /// `half[dj * (2 nx - 1) + (di + nx - 1)]` for `-nx < di < nx`, `0 <= dj < ny`.
+    EvenInY {
+        /// The half plane of offsets.
+        half: Vec<f64>,
+        /// Cells along x.
+        nx: usize,
+    },
+}
+
+impl SurfaceKernel {
+    /// The kernel at the offset `(di, dj)`, `|di| < nx`, `|dj| < ny`.
+    pub fn at(&self, di: i64, dj: i64) -> f64 {
+        let dj = dj.unsigned_abs() as usize;
+        match self {
+            SurfaceKernel::Even { quadrant, nx } => quadrant[dj * nx + di.unsigned_abs() as usize],
+            SurfaceKernel::EvenInY { half, nx } => {
+                half[dj * (2 * nx - 1) + (di + *nx as i64 - 1) as usize]
+            }
+        }
+    }
+
+    /// Whether the kernel is even in `di` too (the contact operator is then
+    /// symmetric).
+    pub fn is_even(&self) -> bool {
+        matches!(self, SurfaceKernel::Even { .. })
+    }
+}
+
+/// A body as the solvers and the stress sections see it.
+pub trait BodyModel: std::fmt::Debug + Send + Sync {
+    /// The surface influence kernel on `nx x ny` square cells of side `cell` when
+    /// the slider moves at `velocity` (`+inf` allowed) in +x.
+    fn surface_kernel(
+        &self,
+        cell: f64,
+        nx: usize,
+        ny: usize,
+        velocity: f64,
+    ) -> Result<SurfaceKernel>;
+    /// Whether the surface kernel depends on the sliding speed (a cache of kernels
+    /// keys on the speed then).
+    fn kernel_depends_on_velocity(&self) -> bool;
+    /// Whether the surface kernel at `velocity` is even in x, which makes the
+    /// contact operator symmetric (conjugate gradients then apply).
+    fn kernel_is_even(&self, velocity: f64) -> bool;
+    /// The power dissipated in the body divided by the sliding speed (a force) when
+    /// the cells of `grid` carry `pressure` (mean over each cell) sliding at
+    /// `velocity`: 0 for an elastic body.
+    fn dissipated_force(&self, grid: &Grid, pressure: &[f64], velocity: f64) -> Result<f64>;
     /// The six stresses at depth per unit pressure on one cell; a depth equal to an
     /// interface's is read on `interface_side`.
     fn stress_kernels(&self, interface_side: Side) -> Box<dyn StressKernels>;
@@ -63,9 +125,9 @@ pub trait ElasticBody: std::fmt::Debug + Send + Sync {
 }
 
 impl Body {
-    /// The implementation of [`ElasticBody`] for this body: the one place a body's
+    /// The implementation of [`BodyModel`] for this body: the one place a body's
     /// data meets its model.
-    pub fn model(&self) -> Box<dyn ElasticBody> {
+    pub fn model(&self) -> Box<dyn BodyModel> {
         match self {
             Body::Homogeneous(material) => Box::new(HomogeneousHalfSpace {
                 material: *material,
@@ -73,20 +135,28 @@ impl Body {
             Body::Layered(stack) => Box::new(StackBody {
                 stack: stack.clone(),
             }),
+            Body::Viscoelastic(solid) => Box::new(solid.model()),
         }
     }
 }
 
-/// The surface-displacement kernel of `body` on `grid`'s cells, given by its
-/// quadrant only: the spectrum on a padding is built when a product needs it
-/// ([`ConvolutionPlan::even_kernel`]).
+/// The surface-displacement kernel of `body` on `grid`'s cells at sliding speed
+/// `velocity`: an even kernel is given by its quadrant only (the spectrum on a
+/// padding is built when a product needs it, [`ConvolutionPlan::even_kernel`]); a
+/// kernel even in y only gets its general spectrum on `plan`'s full padding.
 pub fn surface_kernel(
     body: &Body,
     grid: &Grid,
     plan: &Arc<ConvolutionPlan>,
+    velocity: f64,
 ) -> Result<KernelSpectrum> {
-    let quadrant = body
+    match body
         .model()
-        .surface_kernel_quadrant(grid.cell(), grid.nx(), grid.ny())?;
-    plan.even_kernel(quadrant)
+        .surface_kernel(grid.cell(), grid.nx(), grid.ny(), velocity)?
+    {
+        SurfaceKernel::Even { quadrant, .. } => plan.even_kernel(quadrant),
+        kernel @ SurfaceKernel::EvenInY { .. } => {
+            Ok(plan.kernel_spectrum(|di, dj| kernel.at(di, dj)))
+        }
+    }
 }

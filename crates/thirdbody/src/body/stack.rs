@@ -67,13 +67,13 @@ use realfft::RealFftPlanner;
 use super::homogeneous::homogeneous_surface_kernel_quadrant;
 use super::layered::{Base, LayeredSolver, LongWave, Ply, Stack};
 use super::quadrature::{ChebyshevPanels, GaussLegendre};
-use super::{ElasticBody, Side};
+use super::{BodyModel, Side};
 use crate::error::{require_positive, Error, Result};
 use crate::provenance::{self, Reference};
 use crate::stress::{LayeredStressKernels, StressKernels};
 
 /// A stack of bonded layers on an elastic half-space or a rigid base: the
-/// [`ElasticBody`] of [`crate::Body::Layered`].
+/// [`BodyModel`] of [`crate::Body::Layered`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct StackBody {
     /// The layers and their base.
@@ -110,9 +110,35 @@ impl Default for Resolution {
     }
 }
 
-impl ElasticBody for StackBody {
-    fn surface_kernel_quadrant(&self, cell: f64, nx: usize, ny: usize) -> Result<Vec<f64>> {
-        StackBody::surface_kernel_quadrant(self, cell, nx, ny)
+impl BodyModel for StackBody {
+    fn surface_kernel(
+        &self,
+        cell: f64,
+        nx: usize,
+        ny: usize,
+        _velocity: f64,
+    ) -> Result<super::SurfaceKernel> {
+        Ok(super::SurfaceKernel::Even {
+            quadrant: StackBody::surface_kernel_quadrant(self, cell, nx, ny)?,
+            nx,
+        })
+    }
+
+    fn kernel_depends_on_velocity(&self) -> bool {
+        false
+    }
+
+    fn kernel_is_even(&self, _velocity: f64) -> bool {
+        true
+    }
+
+    fn dissipated_force(
+        &self,
+        _grid: &crate::grid::Grid,
+        _pressure: &[f64],
+        _velocity: f64,
+    ) -> Result<f64> {
+        Ok(0.0)
     }
 
     fn stress_kernels(&self, interface_side: Side) -> Box<dyn StressKernels> {
@@ -166,7 +192,7 @@ impl ElasticBody for StackBody {
 impl StackBody {
     /// The surface kernel on one quadrant of offsets, `[dj * nx + di]` for
     /// `0 <= di < nx`, `0 <= dj < ny`, on square cells of side `cell`, as
-    /// [`super::ElasticBody::surface_kernel_quadrant`].
+    /// [`super::BodyModel::surface_kernel`] (an even kernel).
     pub fn surface_kernel_quadrant(&self, cell: f64, nx: usize, ny: usize) -> Result<Vec<f64>> {
         self.kernel_with(cell, nx, ny, Resolution::default())
     }

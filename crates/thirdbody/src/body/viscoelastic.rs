@@ -96,8 +96,12 @@ use super::homogeneous::{
     half_primitive, homogeneous_surface_kernel_quadrant, rectangle_inverse_distance_integral,
 };
 use super::quadrature::GaussLegendre;
+use super::{BodyModel, SurfaceKernel};
 use crate::case::Elastic;
 use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::provenance::{self, Reference};
+use crate::stress::{HomogeneousStressKernels, Side, StressKernels};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -198,6 +202,106 @@ impl CreepSeries {
                 .filter(|b| b.retardation_time.is_finite())
                 .map(|b| b.compliance)
                 .sum::<f64>()
+    }
+}
+
+/// A linear viscoelastic half-space as the solvers see it: its plane-strain creep
+/// compliance and its constant Poisson ratio (built from a case's
+/// [`super::ViscoelasticHalfSpace`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViscoelasticBody {
+    /// The plane-strain creep compliance `J(t) = (1 - nu^2) D(t)`.
+    pub creep: CreepSeries,
+    /// Poisson's ratio (only the stresses use it).
+    pub poisson: f64,
+    /// The works its rheology comes from.
+    pub references: Vec<Reference>,
+}
+
+impl ViscoelasticBody {
+    /// The compliances that creep at `velocity` on cells of side `cell`: whether
+    /// any branch's creep length lies strictly between the relaxed and frozen
+    /// limits of [`steady_sliding_kernel`] (otherwise the kernel is even).
+    fn creeps_at(&self, velocity: f64, cell: f64) -> bool {
+        self.creep.branches.iter().any(|b| {
+            let lambda = velocity * b.retardation_time / cell;
+            b.compliance > 0.0
+                && b.retardation_time.is_finite()
+                && (LAMBDA_FLOOR..=1.0 / LAMBDA_FLOOR).contains(&lambda)
+        })
+    }
+}
+
+impl BodyModel for ViscoelasticBody {
+    fn surface_kernel(
+        &self,
+        cell: f64,
+        nx: usize,
+        ny: usize,
+        velocity: f64,
+    ) -> Result<SurfaceKernel> {
+        let half = steady_sliding_kernel(&self.creep, cell, nx, ny, velocity)?;
+        if self.creeps_at(velocity, cell) {
+            return Ok(SurfaceKernel::EvenInY { half, nx });
+        }
+        // No branch creeps at this speed: the kernel is the elastic one of the
+        // glassy or relaxed compliance, even in x.
+        let width = 2 * nx - 1;
+        let quadrant = (0..ny)
+            .flat_map(|dj| (0..nx).map(move |di| (dj, di)))
+            .map(|(dj, di)| half[dj * width + di + nx - 1])
+            .collect();
+        Ok(SurfaceKernel::Even { quadrant, nx })
+    }
+
+    fn kernel_depends_on_velocity(&self) -> bool {
+        true
+    }
+
+    fn kernel_is_even(&self, velocity: f64) -> bool {
+        // Whether a branch creeps depends on the cell only through the limits
+        // 1e-100 and 1e100 cells of the creep length; a unit cell decides it for
+        // any window a solve can use.
+        !(self.creep.branches.iter().any(|b| {
+            b.compliance > 0.0
+                && b.retardation_time.is_finite()
+                && velocity > 0.0
+                && velocity.is_finite()
+        }))
+    }
+
+    fn dissipated_force(&self, _grid: &Grid, _pressure: &[f64], _velocity: f64) -> Result<f64> {
+        Ok(0.0)
+    }
+
+    fn stress_kernels(&self, _interface_side: Side) -> Box<dyn StressKernels> {
+        // With a constant Poisson ratio the stresses under given surface tractions
+        // do not depend on the modulus (the correspondence principle applied to
+        // Boussinesq's solution): Love's kernels of any modulus apply.
+        Box::new(HomogeneousStressKernels {
+            material: Elastic {
+                young: 1.0,
+                poisson: self.poisson,
+            },
+        })
+    }
+
+    fn interface_depths(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    fn softest_modulus(&self) -> f64 {
+        1.0 / self.creep.relaxed()
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        let mut works = vec![Reference::new(
+            provenance::LOVE,
+            "the viscoelastic body's elastic cell kernel and its stresses (uniform \
+             pressure on a rectangle)",
+        )];
+        works.extend(self.references.iter().cloned());
+        works
     }
 }
 
