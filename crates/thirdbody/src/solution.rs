@@ -72,8 +72,9 @@ pub struct Solution {
     pub shape: Vec<f64>,
     /// Slope df/dx at cell centres.
     pub shape_slope: Vec<f64>,
-    /// The power dissipated in the layer divided by the sliding speed (0 without a
-    /// layer or at infinite speed): by energy balance, the tangential force.
+    /// The power dissipated in the layer and in the body divided by the sliding
+    /// speed (0 for an elastic body without a layer, or at infinite speed): by
+    /// energy balance, the tangential force.
     pub dissipated_force: f64,
     /// Approach (penetration) D of the slider.
     pub approach: f64,
@@ -112,8 +113,9 @@ pub struct Summary {
     pub friction_coefficient: f64,
     /// `Q_T = mu Q`, the force that opposes the sliding.
     pub tangential_force: f64,
-    /// `mu` from energy balance: the power dissipated in the layer over `Q V`
-    /// (an independent check of `friction_coefficient`; 0 without a layer).
+    /// `mu` from energy balance: the power dissipated in the layer and the body
+    /// over `Q V` (an independent check of `friction_coefficient`; 0 for an elastic
+    /// body without a layer).
     pub dissipation_friction_coefficient: f64,
     /// Outer iterations.
     pub iterations: usize,

@@ -649,7 +649,7 @@ fn finish(
     p.iter_mut().for_each(|v| *v *= scale);
     let mut wb = vec![0.0; n];
     OnCellMeans::new(problem.influence.as_mut(), &entries).apply(&p, &mut wb);
-    let (wl, compliance, dissipated_force) = match &problem.layer {
+    let (wl, compliance, layer_dissipated_force) = match &problem.layer {
         Some(l) => {
             let mut wl = vec![0.0; n];
             l.displacement(&p, &mut wl);
@@ -657,6 +657,21 @@ fn finish(
         }
         None => (None, None, 0.0),
     };
+    // The body carries each cell's mean pressure.
+    let body_dissipated_force = if entries.is_empty() {
+        problem
+            .body
+            .model()
+            .dissipated_force(&grid, &p, problem.velocity)?
+    } else {
+        let mut mean = vec![0.0; n];
+        crate::layer::cell_mean_pressure(&entries, &p, &mut mean);
+        problem
+            .body
+            .model()
+            .dissipated_force(&grid, &mean, problem.velocity)?
+    };
+    let dissipated_force = layer_dissipated_force + body_dissipated_force;
     let gap: Vec<f64> = (0..n)
         .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + problem.shape[k] - report.approach)
         .collect();
