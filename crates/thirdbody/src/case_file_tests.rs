@@ -895,3 +895,142 @@ fn bad_stacks_name_the_field_in_one_line() {
         &["coating.thickness"],
     );
 }
+
+/// A Zener substrate under the sphere of [`HERTZ`].
+const ZENER: &str = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\n\
+                     rheology = \"zener\"\nglassy_modulus = 10.0\nrelaxed_modulus = 1.0\n\
+                     relaxation_time = 0.5\npoisson = 0.3\n[loading]\nnormal_load = 5e-6\n\
+                     velocity = 0.01\n[grid]\ncells = [32, 32]\n";
+
+#[test]
+fn viscoelastic_substrates_parse_into_their_rheologies() {
+    use crate::body::{SolidRheology, ViscoelasticHalfSpace};
+    let zener = |text: &str| parse(text).unwrap().case.body;
+    assert_eq!(
+        zener(ZENER),
+        Body::Viscoelastic(ViscoelasticHalfSpace {
+            rheology: SolidRheology::Zener {
+                glassy_modulus: 10.0,
+                relaxed_modulus: 1.0,
+                relaxation_time: 0.5,
+            },
+            poisson: 0.3,
+        })
+    );
+    let fractional = with(ZENER, "rheology", "rheology = \"fractional_zener\"");
+    let fractional = add(&fractional, "substrate", "order = 0.4\nbranch_count = 21");
+    assert_eq!(
+        zener(&fractional),
+        Body::Viscoelastic(ViscoelasticHalfSpace {
+            rheology: SolidRheology::FractionalZener {
+                glassy_modulus: 10.0,
+                relaxed_modulus: 1.0,
+                relaxation_time: 0.5,
+                order: 0.4,
+                branch_count: Some(21),
+            },
+            poisson: 0.3,
+        })
+    );
+    let prony = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nrheology = \"prony\"\n\
+                 glassy_compliance = 0.1\nbranch_compliances = [0.5, 0.4]\n\
+                 branch_times = [0.1, 10]\npoisson = 0.45\n[loading]\nnormal_load = 5e-6\n\
+                 velocity = 0.01\n[grid]\ncells = [32, 32]\n";
+    assert_eq!(
+        zener(prony),
+        Body::Viscoelastic(ViscoelasticHalfSpace {
+            rheology: SolidRheology::Prony {
+                glassy_compliance: 0.1,
+                branch_compliances: vec![0.5, 0.4],
+                branch_times: vec![0.1, 10.0],
+            },
+            poisson: 0.45,
+        })
+    );
+    let relaxation = prony
+        .replace("\"prony\"", "\"relaxation_prony\"")
+        .replace("glassy_compliance = 0.1", "equilibrium_modulus = 1.0")
+        .replace("branch_compliances", "branch_moduli");
+    assert_eq!(
+        zener(&relaxation),
+        Body::Viscoelastic(ViscoelasticHalfSpace {
+            rheology: SolidRheology::RelaxationProny {
+                equilibrium_modulus: 1.0,
+                branch_moduli: vec![0.5, 0.4],
+                branch_times: vec![0.1, 10.0],
+            },
+            poisson: 0.45,
+        })
+    );
+    // rheology = "elastic" is the default.
+    let elastic = add(HERTZ, "substrate", "rheology = \"elastic\"");
+    assert_eq!(zener(&elastic), parse(HERTZ).unwrap().case.body);
+}
+
+#[test]
+fn bad_viscoelastic_substrates_name_the_key() {
+    error_naming(
+        &with(ZENER, "glassy_modulus", "glassy_modulus = 0.5"),
+        &["substrate.glassy_modulus", "relaxed"],
+    );
+    error_naming(
+        &with(ZENER, "relaxation_time", "relaxation_time = -1.0"),
+        &["substrate.relaxation_time"],
+    );
+    error_naming(
+        &with(ZENER, "relaxed_modulus", "order = 0.5"),
+        &["substrate.order", "zener"],
+    );
+    error_naming(
+        &with(ZENER, "relaxed_modulus", "young = 1.0"),
+        &["substrate.young", "zener"],
+    );
+    error_naming(
+        &with(ZENER, "relaxed_modulus", "branch_times = [1.0]"),
+        &["substrate.branch_times"],
+    );
+    error_naming(
+        &with(ZENER, "relaxed_modulus", ""),
+        &["substrate.relaxed_modulus"],
+    );
+    error_naming(
+        &with(ZENER, "rheology", "rheology = \"maxwell\""),
+        &["substrate", "rheology"],
+    );
+    error_naming(&with(ZENER, "velocity", ""), &["loading.velocity"]);
+    error_naming(
+        &add(ZENER, "substrate", "").replace(
+            "[loading]",
+            "[coating]\nyoung = 2.0\npoisson = 0.3\nthickness = 0.01\n[loading]",
+        ),
+        &["coating", "viscoelastic"],
+    );
+    error_naming(
+        &with(HERTZ, "young", "young = 1.0\nglassy_modulus = 3.0"),
+        &["substrate.glassy_modulus", "rheology"],
+    );
+    let fractional = with(ZENER, "rheology", "rheology = \"fractional_zener\"");
+    error_naming(&fractional, &["substrate.order"]);
+    error_naming(
+        &add(&fractional, "substrate", "order = 1.2"),
+        &["substrate.order", "0 < order <= 1"],
+    );
+    error_naming(
+        &add(&fractional, "substrate", "order = 0.5\nbranch_count = 1"),
+        &["substrate.branch_count"],
+    );
+    let prony = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nrheology = \"prony\"\n\
+                 glassy_compliance = 0.1\nbranch_compliances = [0.5, -0.4]\n\
+                 branch_times = [0.1, 10]\npoisson = 0.45\n[loading]\nnormal_load = 5e-6\n\
+                 velocity = 0.01\n[grid]\ncells = [32, 32]\n";
+    error_naming(prony, &["substrate.branch_compliances[1]"]);
+    error_naming(
+        &prony.replace("[0.1, 10]", "[0.1]").replace("-0.4", "0.4"),
+        &["substrate.branch_times", "one time per entry"],
+    );
+    let fluid = prony
+        .replace("\"prony\"", "\"relaxation_prony\"")
+        .replace("glassy_compliance = 0.1", "equilibrium_modulus = 0.0")
+        .replace("branch_compliances = [0.5, -0.4]", "branch_moduli = [0.5, 0.4]");
+    error_naming(&fluid, &["substrate.equilibrium_modulus", "fluid"]);
+}
