@@ -1031,6 +1031,9 @@ fn bad_viscoelastic_substrates_name_the_key() {
     let fluid = prony
         .replace("\"prony\"", "\"relaxation_prony\"")
         .replace("glassy_compliance = 0.1", "equilibrium_modulus = 0.0")
-        .replace("branch_compliances = [0.5, -0.4]", "branch_moduli = [0.5, 0.4]");
+        .replace(
+            "branch_compliances = [0.5, -0.4]",
+            "branch_moduli = [0.5, 0.4]",
+        );
     error_naming(&fluid, &["substrate.equilibrium_modulus", "fluid"]);
 }

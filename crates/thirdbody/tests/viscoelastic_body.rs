@@ -174,19 +174,20 @@ fn the_contact_matches_an_independent_boundary_element_solution() {
     // The same cells (128^2 over +-1.6 a0, plane-strain relaxed modulus 1 with
     // nu = 0), so both solve the same discrete problem; they differ in the kernel's
     // quadrature (the reference interpolates it linearly on eighths of a cell) and
-    // in the solver. Measured: mu within 4e-4 and D within 4e-5 (relative).
+    // in the solver.
     for (ratio, zeta, mu_ref, d_ref) in REFERENCE {
         let case = sliding(zener(ratio, 1.0, 1.0, 0.0), zeta * A0, 128, Some(1.6));
         let s = solve(&case, &P).unwrap().summary();
         let (mu, d) = (s.friction_coefficient / A0, s.penetration / (A0 * A0));
-        // The reference prints 5 digits: at mu = 0.015, 1e-5 is 7e-4.
-        let mu_tol = 1e-3f64.max(1.5e-5 / mu_ref);
+        // Measured: mu within 1.4e-5 but at E_g / E_0 = 10, V tau / a0 = 10 (4.4e-4,
+        // where the creep length is 100 a0, beyond the reference's near field: its
+        // own N = 96 and N = 128 tables differ by 3e-3 there); D within 1.2e-5.
         assert!(
-            rel(mu, mu_ref) < mu_tol,
+            rel(mu, mu_ref) < 6e-4,
             "k {ratio} zeta {zeta}: mu {mu} vs {mu_ref}"
         );
         assert!(
-            rel(d, d_ref) < 2e-4,
+            rel(d, d_ref) < 3e-5,
             "k {ratio} zeta {zeta}: D {d} vs {d_ref}"
         );
     }
