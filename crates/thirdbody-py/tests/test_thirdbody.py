@@ -537,3 +537,28 @@ def test_a_stack_from_sections_its_layer_varied_and_its_interfaces():
         solution.stresses("interface", interface=3)
     with pytest.raises(ValueError, match="side"):
         solution.stresses("interface", side="middle")
+
+
+def test_a_viscoelastic_body_from_sections_varied_solved_and_its_errors():
+    # A Zener half-space (no layer) from Python dicts: the body creeps, so the solver
+    # is Newton and mu > 0; a slower speed (creep length far below the contact)
+    # gives the relaxed body's Hertz approach, and a bad modulus names its key.
+    sections = dict(
+        slider={"shape": "sphere", "radius": 1.0},
+        substrate={"rheology": "zener", "glassy_modulus": 10.0, "relaxed_modulus": 1.0,
+                   "relaxation_time": 1.0, "poisson": 0.0},
+        loading={"normal_load": 4.0 * 0.05**3 / 3.0, "velocity": 0.005},
+        grid={"cells": [48, 48]},
+    )
+    case = thirdbody.Case(**sections)
+    solution = thirdbody.solve(case)
+    assert solution.summary["method"] == "semismooth_newton"
+    # The standard linear solid's peak, 0.40 a0 / R near V tau / a0 = 0.1 (a0 = 0.05).
+    assert 0.35 * 0.05 < solution.summary["friction_coefficient"] < 0.42 * 0.05
+    relaxed = thirdbody.solve(case.with_({"loading.velocity": 1e-9})).summary
+    assert math.isclose(relaxed["penetration"], 0.05**2, rel_tol=5e-3)   # Hertz, E0* = 1
+    assert relaxed["friction_coefficient"] < 1e-3 * solution.summary["friction_coefficient"]
+    xz = solution.stresses("xz", depths=[0.01, 0.02, 0.04])
+    assert np.isfinite(xz["sigma_z"]).all() and xz["sigma_z"].min() < 0
+    with pytest.raises(ValueError, match="substrate.glassy_modulus"):
+        case.with_({"substrate.glassy_modulus": 0.5})
