@@ -26,7 +26,7 @@ fn count(k: usize) {
 }
 use thirdbody::{solve, SolverParams};
 
-const EXAMPLES: [&str; 8] = [
+const EXAMPLES: [&str; 10] = [
     include_str!("../../../examples/paper_fig3.toml"),
     include_str!("../../../examples/hertz.toml"),
     include_str!("../../../examples/ellipsoid_si.toml"),
@@ -35,6 +35,8 @@ const EXAMPLES: [&str; 8] = [
     include_str!("../../../examples/paper_fig12b_thick_coating.toml"),
     include_str!("../../../examples/three_layer_coating.toml"),
     include_str!("../../../examples/polymer_liner_rigid.toml"),
+    include_str!("../../../examples/fractional_zener_rubber.toml"),
+    include_str!("../../../examples/sweeps/zener_body_and_layer.toml"),
 ];
 
 /// Values a hostile user might write in place of a number.
@@ -55,6 +57,11 @@ fn wild_value() -> impl Strategy<Value = String> {
         Just("\"half_space\"".to_string()),
         Just("\"frictionless\"".to_string()),
         Just("\"bonded\"".to_string()),
+        // The viscoelastic substrate's words.
+        Just("\"zener\"".to_string()),
+        Just("\"elastic\"".to_string()),
+        Just("\"prony\"".to_string()),
+        Just("[1e-9, 1e9]".to_string()),
         Just("0.4999999".to_string()),
         Just("99999999999999999999".to_string()),
         (-300i32..300).prop_map(|e| format!("1e{e}")),
@@ -87,7 +94,9 @@ fn mutate(text: &str, line: usize, kind: u8, value: &str) -> String {
 /// A small grid and no stresses, so that every solve is quick.
 fn small(text: &str) -> String {
     text.lines()
-        .take_while(|l| !l.trim_start().starts_with("[stress]"))
+        .take_while(|l| {
+            !l.trim_start().starts_with("[stress]") && !l.trim_start().starts_with("[sweep")
+        })
         .map(|l| {
             if l.trim_start().starts_with("cells") {
                 "cells = [16, 16]".to_string()
