@@ -1095,17 +1095,4 @@ mod tests {
         assert!(message(&ok, 1.0, 0, 1.0).starts_with("grid"));
         assert!(ok.validate().is_ok());
     }
-
-    #[test]
-    #[ignore = "timing: run with --ignored --nocapture"]
-    fn viscoelastic_body_timing_256_by_256_with_10_branches() {
-        let branches: Vec<(f64, f64)> = (0..10).map(|k| (0.1, 10f64.powi(k - 4))).collect();
-        let s = series(0.2, &branches);
-        let cell = 1.0 / 256.0;
-        let start = std::time::Instant::now();
-        let k = steady_sliding_kernel(&s, cell, 256, 256, 1.0).unwrap();
-        let t = start.elapsed();
-        eprintln!("256 x 256 cells, 10 branches: {t:?} ({} values)", k.len());
-        assert!(k.iter().all(|v| v.is_finite() && *v > 0.0));
-    }
 }
