@@ -278,9 +278,22 @@ impl Case {
     /// solver's vectors and the solution's fields (~110), and with a layer the Newton
     /// step's GMRES basis on the contact cells (~150); measured peaks at 1024² are
     /// 210 (Hertz) and 315 (the paper's Fig. 3) bytes per cell (docs/performance.md).
+    /// A viscoelastic body in steady sliding adds its general spectrum and its build
+    /// (measured peaks of the CLI's solve: 550 bytes per cell at 256², 470 at 512²).
     pub fn estimated_solve_bytes(&self) -> f64 {
         let cells = self.grid.cells[0] as f64 * self.grid.cells[1] as f64;
-        let per_cell = if self.layer.is_some() { 370.0 } else { 220.0 };
+        // A body whose kernel is not even keeps a general spectrum (four times the
+        // even one's 16 bytes per cell) and builds it from the half-plane kernel on
+        // the wrap-around grid (8 + 32 bytes per cell while it is built), and is
+        // solved by Newton.
+        let creeping_body = !self.body.model().kernel_is_even(self.velocity());
+        let per_cell = if creeping_body {
+            520.0
+        } else if self.layer.is_some() {
+            370.0
+        } else {
+            220.0
+        };
         cells * per_cell + 16.0 * 1024.0 * 1024.0
     }
 
