@@ -5,10 +5,13 @@
 //! creep branch integrated exactly for a pressure response linear over the step,
 //! each step's contact solved by the test's own projected conjugate gradients; it
 //! uses Love's elastic cell kernel and nothing of the steady viscoelastic kernel or
-//! the production solvers) converges to the steady sliding solution of the
-//! production steady-sliding kernel and contact solver: the pressure, the friction
+//! the production solvers) converges to the steady sliding solution that
+//! `thirdbody::solve` gives for the same case (`Body::Viscoelastic`, a Prony
+//! series, on the simulator's window and cells): the pressure, the friction
 //! coefficient and the approach within 1 % after enough travel, for a Zener body at
-//! its friction peak and a three-branch body. The simulator is first checked on
+//! its friction peak and a three-branch body. The approach compares directly: both
+//! measure the body's displacement from its undeformed surface, and material the
+//! load has not yet reached has none in the simulation. The simulator is first checked on
 //! what has a known answer: an elastic body is Hertz, very slow sliding is the
 //! relaxed Hertz contact and very fast sliding the glassy one, slow sliding has the
 //! first-order friction `mu = V sum_k J_k tau_k / (J_relaxed R)`, a fresh and a
@@ -16,6 +19,7 @@
 //! order. Every tolerance sits on measured errors (in the comments, at the grids
 //! used); the `#[ignore]`d studies give the convergence tables (docs/validation.md).
 
+mod cases;
 mod time_stepped;
 
 use std::f64::consts::PI;
@@ -282,11 +286,9 @@ fn fresh_and_relaxed_starts_reach_one_steady_state() {
 
 /// The production steady sliding solution on the simulator's window.
 mod production {
-    use std::ops::ControlFlow;
-    use std::sync::Arc;
-    use thirdbody::body::viscoelastic::{steady_sliding_kernel, CreepSeries};
-    use thirdbody::convolution::ConvolutionPlan;
-    use thirdbody::operator::ConvolutionOperator;
+    use super::cases;
+    use thirdbody::body::viscoelastic::CreepSeries;
+    use thirdbody::body::{SolidRheology, ViscoelasticHalfSpace};
     use thirdbody::*;
 
     /// What the comparisons read of a steady solution.
@@ -297,59 +299,35 @@ mod production {
         pub max_pressure: f64,
     }
 
-    /// STAND-IN until the case API has a viscoelastic body: the production
-    /// steady-sliding kernel (`steady_sliding_kernel`) as a DC-FFT operator in a
-    /// `ContactProblem`, solved by the production semi-smooth Newton solver on the
-    /// window `[-half_width, half_width]^2` of `n x n` cells. The case only carries
-    /// the slider, the load and the speed (its homogeneous body is not used: the
-    /// operator replaces it).
+    /// The Poisson ratio of the case (the plane-strain compliance is
+    /// `(1 - nu^2)` times the tensile one the case takes).
+    const POISSON: f64 = 0.3;
+
+    /// The sphere (R = 1) under `load` sliding at `speed` over the viscoelastic
+    /// half-space of plane-strain creep compliance `creep`, solved by
+    /// `thirdbody::solve` on the fixed window `[-half_width, half_width]^2` of
+    /// `n x n` cells (the simulator's cells).
     pub fn steady(creep: &CreepSeries, load: f64, speed: f64, n: usize, half_width: f64) -> Steady {
-        let case = Case {
-            slider: Slider::Sphere { radius: 1.0 },
-            body: Body::Homogeneous(Elastic {
-                young: 1.0 / creep.relaxed(),
-                poisson: 0.0,
-            }),
-            layer: None,
-            loading: Loading {
-                normal_load: load,
-                velocity: Some(speed),
+        let tensile = 1.0 / (1.0 - POISSON * POISSON);
+        let mut case = cases::sphere(load, n);
+        case.body = Body::Viscoelastic(ViscoelasticHalfSpace {
+            rheology: SolidRheology::Prony {
+                glassy_compliance: tensile * creep.glassy,
+                branch_compliances: creep
+                    .branches
+                    .iter()
+                    .map(|b| tensile * b.compliance)
+                    .collect(),
+                branch_times: creep.branches.iter().map(|b| b.retardation_time).collect(),
             },
-            grid: GridSpec {
-                cells: [n, n],
-                half_width: Some([half_width, half_width]),
-                centre: Some([0.0, 0.0]),
-            },
-            units: Units::Dimensionless,
-        };
-        let grid = Grid::centred(n, n, 2.0 * half_width / n as f64, [0.0, 0.0]).unwrap();
-        let kernel = steady_sliding_kernel(creep, grid.cell(), n, n, speed).unwrap();
-        let width = 2 * n - 1;
-        let plan = ConvolutionPlan::new(n, n, Parallelism::Sequential);
-        let spectrum = plan.kernel_spectrum(|di, dj| {
-            kernel[dj.unsigned_abs() as usize * width + (di + n as i64 - 1) as usize]
+            poisson: POISSON,
         });
-        let operator = ConvolutionOperator::new(plan.convolver(), Arc::new(spectrum)).unwrap();
-        let (mut shape, mut slope) = (vec![0.0; n * n], vec![0.0; n * n]);
-        for j in 0..n {
-            for i in 0..n {
-                let (x, y) = (grid.x(i), grid.y(j));
-                shape[j * n + i] = 0.5 * (x * x + y * y);
-                slope[j * n + i] = x;
-            }
-        }
-        let mut problem =
-            ContactProblem::from_parts(&case, &grid, Box::new(operator), shape, slope).unwrap();
-        let params = SolverParams {
-            tolerance: 1e-12,
-            method: Some(Method::SemismoothNewton),
-            parallelism: Parallelism::Sequential,
-            ..SolverParams::default()
-        };
-        let solution = solve_problem(&mut problem, None, &params, &mut |_| {
-            ControlFlow::Continue(())
-        })
-        .unwrap();
+        case.loading.velocity = Some(speed);
+        case = cases::fixed_window(case, half_width, [0.0, 0.0]);
+        let solution = cases::solve_to(&case, 1e-12);
+        assert_eq!(solution.info.method, Method::SemismoothNewton);
+        assert_eq!([solution.grid.nx(), solution.grid.ny()], [n, n]);
+        assert!((solution.grid.cell() - 2.0 * half_width / n as f64).abs() < 1e-15);
         let summary = solution.summary();
         Steady {
             approach: solution.approach,
