@@ -422,7 +422,7 @@ fn study(
 }
 
 #[test]
-#[ignore = "time-step convergence study, about 1 min in release mode"]
+#[ignore = "time-step convergence study, 1 to 2 min in release mode"]
 fn time_step_convergence_is_second_order() {
     // On 32^2 cells with 1, 2, 4, 8 steps per cell the differences from the steady
     // solution on the same grid fall 4x per halving of the step (measured, Zener at
@@ -446,7 +446,7 @@ fn time_step_convergence_is_second_order() {
 }
 
 #[test]
-#[ignore = "grid convergence study, about 3 min in release mode"]
+#[ignore = "grid convergence study, 3 to 5 min in release mode"]
 fn grid_convergence() {
     // One step per cell on 32^2, 64^2, 128^2 (the step shrinks with the cell): the
     // differences from the steady solution on each grid fall per halving 3.3x to
