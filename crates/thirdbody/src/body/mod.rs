@@ -10,6 +10,7 @@
 //! spectrum (built through [`crate::KernelCache`]).
 
 pub mod homogeneous;
+pub mod hysteresis;
 pub mod layered;
 pub(crate) mod quadrature;
 pub mod solid;
