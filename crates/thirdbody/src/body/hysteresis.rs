@@ -428,16 +428,16 @@ impl EtaLattice<'_> {
 /// `sum_m v[m] / sqrt(x2 + e2[m])` in four independent lanes (vectorisable).
 fn inverse_distance_sum(v: &[f64], e2: &[f64], x2: f64) -> f64 {
     let mut lanes = [0.0; 4];
-    let chunks = v.len() / 4;
-    for c in 0..chunks {
-        for l in 0..4 {
-            let m = 4 * c + l;
-            lanes[l] += v[m] / (x2 + e2[m]).sqrt();
+    let (vs, es) = (v.chunks_exact(4), e2.chunks_exact(4));
+    let (v_rest, e_rest) = (vs.remainder(), es.remainder());
+    for (vc, ec) in vs.zip(es) {
+        for ((lane, a), b) in lanes.iter_mut().zip(vc).zip(ec) {
+            *lane += a / (x2 + b).sqrt();
         }
     }
     let mut sum = lanes[0] + lanes[1] + lanes[2] + lanes[3];
-    for m in 4 * chunks..v.len() {
-        sum += v[m] / (x2 + e2[m]).sqrt();
+    for (a, b) in v_rest.iter().zip(e_rest) {
+        sum += a / (x2 + b).sqrt();
     }
     sum
 }
@@ -521,18 +521,22 @@ impl<'a> RowTransforms<'a> {
             for (j, o) in out[..ny].iter_mut().enumerate() {
                 let row = &self.pressure[j * nx..(j + 1) * nx];
                 let (mut re, mut im) = ([0.0; 4], [0.0; 4]);
-                let chunks = nx / 4;
-                for c in 0..chunks {
+                let (rows, cs, ss) = (
+                    row.chunks_exact(4),
+                    cosines.chunks_exact(4),
+                    sines.chunks_exact(4),
+                );
+                let (row_rest, c_rest, s_rest) = (rows.remainder(), cs.remainder(), ss.remainder());
+                for ((pc, cc), sc) in rows.zip(cs).zip(ss) {
                     for l in 0..4 {
-                        let i = 4 * c + l;
-                        re[l] += row[i] * cosines[i];
-                        im[l] -= row[i] * sines[i];
+                        re[l] += pc[l] * cc[l];
+                        im[l] -= pc[l] * sc[l];
                     }
                 }
                 let (mut r, mut m) = (re[0] + re[1] + re[2] + re[3], im[0] + im[1] + im[2] + im[3]);
-                for i in 4 * chunks..nx {
-                    r += row[i] * cosines[i];
-                    m -= row[i] * sines[i];
+                for ((p, c), s) in row_rest.iter().zip(c_rest).zip(s_rest) {
+                    r += p * c;
+                    m -= p * s;
                 }
                 *o = Complex::new(r, m);
             }
