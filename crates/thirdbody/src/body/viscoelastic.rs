@@ -270,8 +270,15 @@ impl BodyModel for ViscoelasticBody {
         }))
     }
 
-    fn dissipated_force(&self, _grid: &Grid, _pressure: &[f64], _velocity: f64) -> Result<f64> {
-        Ok(0.0)
+    fn dissipated_force(&self, grid: &Grid, pressure: &[f64], velocity: f64) -> Result<f64> {
+        super::hysteresis::dissipated_force(
+            &self.creep,
+            velocity,
+            pressure,
+            grid.nx,
+            grid.ny,
+            grid.cell,
+        )
     }
 
     fn stress_kernels(&self, _interface_side: Side) -> Box<dyn StressKernels> {
