@@ -62,6 +62,14 @@ impl BodyModel for HomogeneousHalfSpace {
         self.material.plane_strain_modulus()
     }
 
+    fn surface_compliance(
+        &self,
+        _wavenumber_x: f64,
+        _velocity: f64,
+    ) -> Option<realfft::num_complex::Complex<f64>> {
+        Some((1.0 / self.material.plane_strain_modulus()).into())
+    }
+
     fn references(&self) -> Vec<Reference> {
         vec![Reference::new(
             provenance::LOVE,

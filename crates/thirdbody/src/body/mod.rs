@@ -21,6 +21,8 @@ pub mod viscoelastic;
 
 use std::sync::Arc;
 
+use realfft::num_complex::Complex;
+
 pub use homogeneous::HomogeneousHalfSpace;
 pub use solid::{SolidRheology, ViscoelasticHalfSpace};
 pub use stack::StackBody;
@@ -116,6 +118,19 @@ pub trait BodyModel: std::fmt::Debug + Send + Sync {
     fn interface_depths(&self) -> Vec<f64>;
     /// The deepest depth with stresses, if the body ends (a rigid base's face).
     fn deepest(&self) -> Option<f64> {
+        None
+    }
+    /// The compliance `J(k_x)` of the surface to a pressure wave
+    /// `exp(i (k_x x + k_y y))` (wavenumbers in radians per length) when the slider
+    /// moves at `velocity` in +x: the wave's displacement is `(2 / |k|) J(k_x)`
+    /// times it. Love's operator for a homogeneous elastic half-space has the
+    /// plane-strain compliance `J = (1 - nu^2) / E`; a viscoelastic one in steady
+    /// sliding the complex creep compliance at the frequency `V k_x` (the
+    /// correspondence principle along the material's path). `None` (the default)
+    /// for a body whose surface is not of that form (a layered one): the contact
+    /// solver then has no approximate inverse of its operator.
+    fn surface_compliance(&self, wavenumber_x: f64, velocity: f64) -> Option<Complex<f64>> {
+        let _ = (wavenumber_x, velocity);
         None
     }
     /// The smallest plane-strain modulus `E / (1 - nu^2)` of its materials (the

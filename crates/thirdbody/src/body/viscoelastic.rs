@@ -301,6 +301,29 @@ impl BodyModel for ViscoelasticBody {
         1.0 / self.creep.relaxed()
     }
 
+    fn surface_compliance(
+        &self,
+        wavenumber_x: f64,
+        velocity: f64,
+    ) -> Option<realfft::num_complex::Complex<f64>> {
+        // A branch creeping over the length l = V tau answers the wave with the
+        // factor 1 / (1 - i k_x l) (the exponential memory of the kernel's
+        // derivation, transformed); a frozen one (tau = inf) not at all, and at
+        // V = 0 it is relaxed.
+        let mut compliance = realfft::num_complex::Complex::from(self.creep.glassy);
+        for b in &self.creep.branches {
+            if !b.retardation_time.is_finite() || b.compliance == 0.0 {
+                continue;
+            }
+            let kl = wavenumber_x * velocity * b.retardation_time;
+            // V = inf (any k_x, as the kernel takes it) leaves the glassy part.
+            if kl.is_finite() {
+                compliance += b.compliance / realfft::num_complex::Complex::new(1.0, -kl);
+            }
+        }
+        Some(compliance)
+    }
+
     fn references(&self) -> Vec<Reference> {
         let mut works = vec![Reference::new(
             provenance::LOVE,
@@ -743,6 +766,27 @@ impl BranchTerms {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_surface_compliance_is_relaxed_for_long_waves_and_glassy_for_short_ones() {
+        let body = ViscoelasticBody {
+            creep: series(0.1, &[(0.9, 2.0), (0.5, f64::INFINITY)]),
+            poisson: 0.3,
+            references: Vec::new(),
+        };
+        let at = |k: f64, v: f64| body.surface_compliance(k, v).unwrap();
+        // The frozen branch never takes part.
+        assert!((at(0.0, 1.0) - 1.0).norm() < 1e-15);
+        assert!((at(3.0, 0.0) - 1.0).norm() < 1e-15);
+        assert!((at(1e12, 1.0) - 0.1).norm() < 1e-11);
+        assert!((at(3.0, f64::INFINITY) - 0.1).norm() < 1e-15);
+        // k V tau = 1: the branch answers with 0.9 / (1 - i).
+        let c = at(0.25, 2.0);
+        assert!(
+            (c.re - 0.55).abs() < 1e-15 && (c.im - 0.45).abs() < 1e-15,
+            "{c}"
+        );
+    }
 
     fn series(glassy: f64, branches: &[(f64, f64)]) -> CreepSeries {
         CreepSeries {
