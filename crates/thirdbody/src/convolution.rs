@@ -1053,7 +1053,9 @@ mod tests {
     #[test]
     fn a_symbol_spectrum_is_the_periodic_operator_of_its_symbol() {
         // The symbol 1 + i sin(xi_x) on a 12 x 10 periodic grid is the identity
-        // plus half the difference of the next and the previous cell along x.
+        // plus half the difference of the next and the previous cell along x (the
+        // convention of the kernels' spectra: a kernel K(di) has the symbol
+        // sum K(d) exp(-i xi d)).
         let (nx, ny) = (12, 10);
         let plan = ConvolutionPlan::padded(nx, ny, [nx, ny], Parallelism::Sequential);
         let spectrum = plan.symbol_spectrum(|xi_x, _| Complex::new(1.0, xi_x.sin()));
@@ -1064,8 +1066,9 @@ mod tests {
         for j in 0..ny {
             for i in 0..nx {
                 let at = |i: usize| field[j * nx + i % nx];
-                // exp(i xi) shifts by one cell: sin(xi) = (e^{i xi} - e^{-i xi}) / 2i.
-                let expected = at(i) + 0.5 * (at(i + nx - 1) - at(i + 1));
+                // The mode exp(i xi n) times i sin(xi) = (e^{i xi} - e^{-i xi}) / 2 is
+                // half its next cell's value minus half its previous one's.
+                let expected = at(i) + 0.5 * (at(i + 1) - at(i + nx - 1));
                 assert!((out[j * nx + i] - expected).abs() < 1e-13, "({i}, {j})");
             }
         }
