@@ -435,6 +435,15 @@ fn solve_on_windows(
     let fixed = case.grid.half_width.is_some();
     let mut grid = window::initial_window(case)?;
     let mut warm: Option<(Grid, Vec<f64>)> = None;
+    if !fixed && !case.body.model().kernel_is_even(case.velocity()) {
+        // A creeping body's contact is narrower than the relaxed estimate and
+        // shifted forward, by amounts no closed form gives: a solve on a coarse
+        // grid finds it, the first window fits it, and its pressure starts Newton.
+        if let Some((window, coarse)) = scout(case, &grid, params, kernels) {
+            grid = window;
+            warm = Some(coarse);
+        }
+    }
     for attempt in 1..=params.max_windows.max(1) {
         if observer(Progress::Window { attempt, grid }).is_break() {
             return Err(Error::Interrupted);
@@ -475,6 +484,49 @@ fn solve_on_windows(
         half_width_x: wx,
         half_width_y: wy,
     })
+}
+
+/// Cells across the coarse grid of [`scout`], at least.
+const SCOUT_CELLS: usize = 48;
+
+/// The window of a case's cells fitted to its contact as a solve on a grid
+/// [`SCOUT_CELLS`] cells across (over `first`, enlarged while its contact reaches
+/// the edge) locates it, with that solve's window and pressure; `None` when the
+/// grid is not at least twice as fine as the coarse one or the coarse solve does
+/// not give a contact (the caller then starts from `first`).
+fn scout(
+    case: &Case,
+    first: &Grid,
+    params: &SolverParams,
+    kernels: &mut KernelCache,
+) -> Option<(Grid, (Grid, Vec<f64>))> {
+    let factor = (first.nx.min(first.ny) / SCOUT_CELLS).max(1);
+    if factor < 2 {
+        return None;
+    }
+    let (nx, ny) = (first.nx / factor, first.ny / factor);
+    let centre = [
+        first.x0 + 0.5 * first.nx as f64 * first.cell,
+        first.y0 + 0.5 * first.ny as f64 * first.cell,
+    ];
+    let mut coarse = Grid::centred(nx, ny, first.cell * factor as f64, centre).ok()?;
+    let mut warm: Option<(Grid, Vec<f64>)> = None;
+    for _ in 0..params.max_windows.max(1) {
+        let mut problem = case.assemble(&coarse, kernels, params.parallelism).ok()?;
+        let solution = solve_problem(&mut problem, warm.as_ref(), params, &mut |_| {
+            ControlFlow::Continue(())
+        })
+        .ok()?;
+        let touches = coarse.touches_edge(&solution.pressure);
+        if !touches {
+            let window = window::fit_to_contact(first.nx, first.ny, &coarse, &solution.pressure)?;
+            return Some((window, (coarse, solution.pressure)));
+        }
+        let next = window::next_window(&coarse, &solution.pressure, true)?;
+        warm = Some((coarse, solution.pressure));
+        coarse = next;
+    }
+    None
 }
 
 /// Solves one assembled problem on its own window (no window adaptation), from the

@@ -157,6 +157,20 @@ pub(crate) fn next_window(grid: &Grid, p: &[f64], touches: bool) -> Option<Grid>
     }
 }
 
+/// The window of `nx x ny` cells that holds the contact `p` found on the coarser
+/// `coarse` grid, widened by one coarse cell on every side (its edges are known to a
+/// coarse cell) and by the margin [`next_window`]'s refits keep.
+pub(crate) fn fit_to_contact(nx: usize, ny: usize, coarse: &Grid, p: &[f64]) -> Option<Grid> {
+    let b = loaded_box(coarse, p)?;
+    let h = coarse.cell;
+    let xs = [coarse.x(b[0]) - 1.5 * h, coarse.x(b[1]) + 1.5 * h];
+    let ys = [coarse.y(b[2]) - 1.5 * h, coarse.y(b[3]) + 1.5 * h];
+    let centre = [(xs[0] + xs[1]) / 2.0, (ys[0] + ys[1]) / 2.0];
+    let (lx, ly) = (xs[1] - xs[0], ys[1] - ys[0]);
+    let cell = (lx * 1.1 / (nx as f64 - 4.0)).max(ly * 1.1 / (ny as f64 - 4.0));
+    Grid::centred(nx, ny, cell, centre).ok()
+}
+
 /// Whether the lowest cell of the slider's height `f` (the first cell to touch)
 /// lies on the window's edge, ties included.
 pub(crate) fn lowest_point_on_edge(grid: &Grid, f: &[f64]) -> bool {
