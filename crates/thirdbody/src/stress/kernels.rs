@@ -223,6 +223,133 @@ pub trait StressKernels: Sync {
     fn parity_in_y(&self) -> Option<[bool; COMPONENTS]> {
         None
     }
+
+    /// For a section along one row of outputs (`source`, the pressure and the row):
+    /// fills `table` as [`Self::fill`] does, or with only a part of the kernels, and
+    /// then adds to `row` (`source.nx` values per component) the stresses along the
+    /// row due to the rest, summed otherwise (a layered body sums its remainder's
+    /// short waves against the pressure's spectrum). The default puts everything in
+    /// the table.
+    fn fill_row(
+        &self,
+        z: f64,
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+        source: &RowSource,
+        row: &mut [Vec<f64>; COMPONENTS],
+    ) {
+        let _ = (source, row);
+        self.fill(z, lattice, table);
+    }
+}
+
+/// The pressure on a grid of square cells and one row of outputs along x (at the
+/// cell centres, at a y offset `offset` cells from the centre of source row 0), for
+/// [`StressKernels::fill_row`]: the section owns it and shares it between the
+/// depths; it keeps the pressure's spectra on the periodic boxes the kernels ask for.
+pub struct RowSource<'a> {
+    pressure: &'a [f64],
+    /// Cells along x (outputs and sources).
+    pub nx: usize,
+    ny: usize,
+    /// The row's y offset from source row 0's centre, in cells.
+    pub offset: f64,
+    spectra: std::sync::Mutex<Vec<std::sync::Arc<PressureSpectrum>>>,
+}
+
+impl<'a> RowSource<'a> {
+    /// `pressure[l * nx + k]` on source column k, row l; the row of outputs `offset`
+    /// cells (along y) from source row 0.
+    pub fn new(pressure: &'a [f64], nx: usize, ny: usize, offset: f64) -> Self {
+        assert_eq!(pressure.len(), nx * ny, "one pressure per cell");
+        RowSource {
+            pressure,
+            nx,
+            ny,
+            offset,
+            spectra: std::sync::Mutex::new(Vec::new()),
+        }
+    }
+
+    /// The pressure's spectrum on a periodic box of `len` x `len` cells, with the
+    /// row's phase for kernels whose y offsets have the fractional part `frac`
+    /// (computed on first use, then shared).
+    pub(crate) fn spectrum(&self, len: usize, frac: f64) -> std::sync::Arc<PressureSpectrum> {
+        let whole = (self.offset - frac).round();
+        let mut spectra = self.spectra.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(s) = spectra.iter().find(|s| s.len == len && s.whole == whole) {
+            return s.clone();
+        }
+        let s = std::sync::Arc::new(PressureSpectrum::new(
+            self.pressure,
+            self.nx,
+            self.ny,
+            len,
+            whole,
+        ));
+        spectra.push(s.clone());
+        s
+    }
+}
+
+/// The DFT of the pressure zero-padded to a periodic box of `len` x `len` cells,
+/// `P(jx, jy) = sum_{k,l} p_{k,l} e^{-2 pi i (jx k + jy l) / len}`, times the phase
+/// `e^{2 pi i jy f / len}` of the row's whole offset f (in cells) from source row 0,
+/// for `jx <= len / 2` (the pressure is real): so that a kernel's box coefficients
+/// `K^(j)` give the row's stresses `sum_j K^(j) P(j) e^{2 pi i jx i / len}`.
+pub(crate) struct PressureSpectrum {
+    len: usize,
+    whole: f64,
+    /// `values[jx * len + jy]`.
+    values: Vec<realfft::num_complex::Complex<f64>>,
+}
+
+impl PressureSpectrum {
+    fn new(pressure: &[f64], nx: usize, ny: usize, len: usize, whole: f64) -> Self {
+        use rayon::prelude::*;
+        use realfft::num_complex::Complex;
+        assert!(nx <= len && ny <= len, "the box holds the pressure");
+        let half = len / 2 + 1;
+        let forward = realfft::RealFftPlanner::<f64>::new().plan_fft_forward(len);
+        // Along x, each source row.
+        let rows: Vec<Vec<Complex<f64>>> = (0..ny)
+            .into_par_iter()
+            .map(|l| {
+                let mut real = vec![0.0; len];
+                real[..nx].copy_from_slice(&pressure[l * nx..(l + 1) * nx]);
+                let mut spec = vec![Complex::default(); half];
+                forward
+                    .process(&mut real, &mut spec)
+                    .expect("FFT lengths are fixed by the plan");
+                spec
+            })
+            .collect();
+        // Along y, each column, with the row's phase.
+        let fft_y = rustfft::FftPlanner::<f64>::new().plan_fft_forward(len);
+        let phase: Vec<Complex<f64>> = (0..len)
+            .map(|jy| {
+                let turns = (jy as i64 * whole as i64).rem_euclid(len as i64);
+                Complex::from_polar(1.0, 2.0 * PI * turns as f64 / len as f64)
+            })
+            .collect();
+        let values: Vec<Complex<f64>> = (0..half)
+            .into_par_iter()
+            .flat_map_iter(|jx| {
+                let mut column = vec![Complex::default(); len];
+                for (c, r) in column.iter_mut().zip(&rows) {
+                    *c = r[jx];
+                }
+                fft_y.process(&mut column);
+                column.into_iter().zip(&phase).map(|(c, p)| c * p)
+            })
+            .collect();
+        PressureSpectrum { len, whole, values }
+    }
+
+    /// Column jx: the values at `jy = 0..len`.
+    pub(crate) fn column(&self, jx: usize) -> &[realfft::num_complex::Complex<f64>] {
+        &self.values[jx * self.len..(jx + 1) * self.len]
+    }
 }
 
 /// Love's kernels for a homogeneous half-space.

@@ -103,7 +103,7 @@ use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
 
 use super::kernels::{
-    HomogeneousStressKernels, InfluenceTable, OffsetLattice, StressKernels, COMPONENTS,
+    HomogeneousStressKernels, InfluenceTable, OffsetLattice, RowSource, StressKernels, COMPONENTS,
 };
 use super::long_wave::{long_wave_kernels, long_wave_share, short_wave_share, Radial, BAND_EDGE};
 use crate::body::layered::{Base, LayeredSolver, Stack};
@@ -398,6 +398,20 @@ impl LayeredStressKernels {
         table: &mut InfluenceTable,
         method: StressMethod,
     ) {
+        self.fill_parts(z, lattice, table, method, None);
+    }
+
+    /// [`Self::fill_with`]; with `row`, the full expansion's short waves on one box
+    /// (no bands) are summed against the pressure along the row
+    /// (`remainder_on_row`) and added to the row's stresses instead of the table.
+    fn fill_parts(
+        &self,
+        z: f64,
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+        method: StressMethod,
+        row: Option<(&RowSource, &mut [Vec<f64>; COMPONENTS])>,
+    ) {
         if method == StressMethod::ThickCoating {
             self.fill_thick(z, lattice, table);
             return;
@@ -493,21 +507,38 @@ impl LayeredStressKernels {
             self.add_banded_remainder(lattice, lambda, top, &remainder, table);
             return;
         }
-        let short = remainder_on_lattice(
-            lattice,
-            lambda,
-            self.stack.thickness(),
-            k1,
-            &remainder,
-            Pass::Short {
-                taper: false,
-                edge: false,
-            },
-        );
+        let short_waves = Pass::Short {
+            taper: false,
+            edge: false,
+        };
+        let thickness = self.stack.thickness();
         let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
-        for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
-            for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
-                *v += a + b;
+        match row {
+            Some((source, row)) if lattice.x_first == lattice.x_first.floor() => {
+                remainder_on_row(
+                    lattice,
+                    lambda,
+                    thickness,
+                    k1,
+                    &remainder,
+                    short_waves,
+                    source,
+                    row,
+                );
+                for (t, l) in table.values.iter_mut().zip(long) {
+                    for (v, b) in t.iter_mut().zip(l) {
+                        *v += b;
+                    }
+                }
+            }
+            _ => {
+                let short =
+                    remainder_on_lattice(lattice, lambda, thickness, k1, &remainder, short_waves);
+                for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
+                    for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
+                        *v += a + b;
+                    }
+                }
             }
         }
     }
@@ -743,6 +774,18 @@ impl StressKernels for LayeredStressKernels {
     fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
         self.fill_with(z, lattice, table, self.method_at(z, lattice));
     }
+
+    fn fill_row(
+        &self,
+        z: f64,
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+        source: &RowSource,
+        row: &mut [Vec<f64>; COMPONENTS],
+    ) {
+        let method = self.method_at(z, lattice);
+        self.fill_parts(z, lattice, table, method, Some((source, row)));
+    }
 }
 
 /// One axis of the periodic lattice: box length `m` cells, the integer part of the
@@ -862,113 +905,9 @@ fn remainder_on_lattice(
     radial: &Radial,
     pass: Pass,
 ) -> [Vec<f64>; COMPONENTS] {
-    let h = lattice.cell;
-    let k1h = k1 * h;
-    // Aliases: |k| up to where e^{-k lambda} is negligible (in cells: k h = theta),
-    // or up to the long waves' band edge.
-    let mut theta_max = ALIAS_DECAY * h / lambda.max(1e-300);
-    if let Pass::Band { .. } = pass {
-        theta_max = theta_max.min(BAND_EDGE * k1h);
-    }
-    // Alias m covers theta in [2 pi m - pi, 2 pi m + pi].
-    let needed = ((theta_max + PI) / (2.0 * PI)).floor().min(1e9) as i64;
-    // Per axis: the alias orders kept and whether they are tapered. Offsets that
-    // are not whole cells along an axis (an XZ section on a row edge) put some of
-    // them on the loaded cell's edge, where the kernel varies on the scale lambda:
-    // below the surface that axis keeps up to `SUB_CELL_EDGE_ALIASES`. (At the
-    // surface the edge values with 128 and 2048 tapered orders agreed to 1e-11 of
-    // the peak, h1 = cell / 100 ... cell / 1e4, E1/E2 = 0.01, 3, 300, measured with
-    // the slope carrier at lambda; with 128 against the full expansion at h1 =
-    // cell / 60: `tests/coated_stress_sub_cell.rs`.)
-    let orders = |first: f64| -> (i64, bool) {
-        let edge = matches!(pass, Pass::Short { edge: true, .. });
-        let cap = if first == first.floor() || !edge {
-            SUB_CELL_ALIASES
-        } else {
-            SUB_CELL_EDGE_ALIASES
-        };
-        match pass {
-            Pass::Short { taper: true, .. } if needed > cap => (cap, true),
-            Pass::Short { taper: true, .. } => (needed.max(0), false),
-            Pass::Short { taper: false, .. } => (needed.clamp(0, FULL_ALIASES), false),
-            Pass::Band { .. } => (needed.max(0), false),
-        }
-    };
-    // A square box, so that the images are equally far in both directions.
-    let span = span_in_cells(lattice);
-    // The lowest wavenumber of the pass: its kernel reaches `REACH` over it.
-    let low = match pass {
-        Pass::Short { .. } => k1h,
-        Pass::Band { low } => low,
-    };
-    let reach = (REACH / low).ceil() as usize;
-    let len = fft_friendly((span + reach).max(2 * span + 2)).max(16);
-    let ax = Axis::new(lattice.x_first, orders(lattice.x_first), len);
-    let ay = Axis::new(lattice.y_first, orders(lattice.y_first), len);
-    let aliases = ax.aliases.max(ay.aliases);
-    // The taper's weight at theta along an axis: 1 up to half the wavenumbers the
-    // aliases cover, then a smooth step to 0 at their edge `(2 aliases + 1) pi`. As a
-    // smooth function of the wavenumber (not of the alias order) it is a low-pass
-    // filter whose real-space kernel has all moments zero, so it changes the kernel
-    // only where that varies on the scale `cell / aliases`.
-    let taper_weight = |a: &Axis, t: f64| {
-        if a.tapered {
-            let half = 0.5 * PI * (2 * a.aliases + 1) as f64;
-            taper((t.abs() - half) / half)
-        } else {
-            1.0
-        }
-    };
-    // Theta = k h of the table: up to the largest alias, capped by the decay (the
-    // sum below reads no theta beyond `theta_max`). Capping at `theta_max` rather
-    // than a period beyond it keeps the table at most 64 panels of the transfer's
-    // scale `h / (2 (lambda + h1))` (lambda >= h1), however thick the coating.
-    let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max);
-    // The longest length in the transfer's exponentials is about z + 2 h1 <= 2 lambda + 2 h1.
-    // Below k1 / 100 the high-pass factor is below 1e-16.
-    let radial_table =
-        RadialTable::new(theta_top, h, 2.0 * (lambda + thickness), 0.01 * low, radial);
-    // `1 - chi(k)`, which is 1 to double precision beyond BAND_EDGE k1, or the band
-    // `chi(k / k1) - chi(k / k_lo) = (1 - chi(k / k_lo)) - (1 - chi(k / k1))`
-    // (accurate where both shares are near 1).
-    let high_pass = |theta: f64| match pass {
-        Pass::Short { .. } if theta > BAND_EDGE * k1h => 1.0,
-        Pass::Short { .. } => short_wave_share(theta, k1h),
-        Pass::Band { low } if theta > BAND_EDGE * low => long_wave_share(theta, k1h),
-        Pass::Band { low } => short_wave_share(theta, low) - short_wave_share(theta, k1h),
-    };
-
-    // Per axis: for each base index and alias order, theta = k h, sinc and the phase
-    // of the fractional offset.
-    struct AxisTerms {
-        theta: Vec<f64>,
-        weight: Vec<Complex<f64>>,
-    }
-    let terms = |a: &Axis| -> (Vec<AxisTerms>, usize) {
-        let n_alias = (2 * a.aliases + 1) as usize;
-        let per_base = (0..a.len)
-            .map(|j| {
-                let mut theta = Vec::with_capacity(n_alias);
-                let mut weight = Vec::with_capacity(n_alias);
-                for m in -a.aliases..=a.aliases {
-                    let t = a.base(j) + 2.0 * PI * m as f64;
-                    theta.push(t);
-                    weight.push(Complex::from_polar(
-                        sinc(t / 2.0) * taper_weight(a, t),
-                        t * a.frac,
-                    ));
-                }
-                AxisTerms { theta, weight }
-            })
-            .collect();
-        (per_base, n_alias)
-    };
-    let (tx, _) = terms(&ax);
-    let (ty, _) = terms(&ay);
-    // Beyond theta_max the remainder is below e^{-ALIAS_DECAY} of its scale.
-    let theta_cut = theta_max;
+    let spectrum = BoxSpectrum::new(lattice, lambda, thickness, k1, radial, pass);
+    let (ax, ay) = (&spectrum.ax, &spectrum.ay);
     let half_x = ax.len / 2 + 1;
-    let norm = 1.0 / (ax.len * ay.len) as f64;
 
     // Output rows of the periodic lattice that the table needs.
     let rows: Vec<usize> = (0..lattice.rows)
@@ -989,47 +928,17 @@ fn remainder_on_lattice(
                 let scratch = vec![Complex::default(); fft_y.get_inplace_scratch_len()];
                 (spectrum, scratch)
             },
-            |(spectrum, scratch), jx| {
-                let x = &tx[jx];
-                if x.theta.iter().all(|t| t.abs() > theta_cut) {
+            |(column, scratch), jx| {
+                if !spectrum.column_reached(jx) {
                     return None;
                 }
-                for (jy, y) in ty.iter().enumerate() {
-                    let mut acc = [Complex::<f64>::default(); COMPONENTS];
-                    for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
-                        if ty_.abs() > theta_cut {
-                            continue;
-                        }
-                        for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
-                            // |k| h; the wave numbers are bounded (a few times 2 pi),
-                            // so hypot's overflow guard is not needed.
-                            let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
-                            if theta > theta_cut {
-                                continue;
-                            }
-                            let r = radial_table.eval(theta).map(|v| v * high_pass(theta));
-                            let (c, s) = if theta > 0.0 {
-                                (tx_ / theta, ty_ / theta)
-                            } else {
-                                (1.0, 0.0)
-                            };
-                            let w = wx * wy;
-                            let (xixi, etaeta, zz, xiz) = (r[0], r[1], r[2], r[3]);
-                            let shear = Complex::new(0.0, xiz) * w;
-                            acc[0] += w * (xixi * c * c + etaeta * s * s);
-                            acc[1] += w * (xixi * s * s + etaeta * c * c);
-                            acc[2] += w * zz;
-                            acc[3] += w * ((xixi - etaeta) * c * s);
-                            acc[4] += shear * c;
-                            acc[5] += shear * s;
-                        }
-                    }
-                    for (dst, a) in spectrum.iter_mut().zip(acc) {
-                        dst[jy] = a * norm;
+                for jy in 0..ay.len {
+                    for (dst, a) in column.iter_mut().zip(spectrum.at(jx, jy)) {
+                        dst[jy] = a;
                     }
                 }
                 Some(std::array::from_fn(|c| {
-                    let column = &mut spectrum[c];
+                    let column = &mut column[c];
                     fft_y.process_with_scratch(column, scratch);
                     rows.iter().map(|&r| column[r]).collect()
                 }))
@@ -1068,6 +977,260 @@ fn remainder_on_lattice(
         .collect();
     let mut it = per_component.into_iter();
     std::array::from_fn(|_| it.next().unwrap_or_default())
+}
+
+/// The same part of the remainder as [`remainder_on_lattice`] on the same periodic
+/// box, but summed directly against the pressure's spectrum on that box for the one
+/// row of outputs of `source`: `sigma_c(x_i) = sum_j K^_c(j) P(j) e^{2 pi i (j_x i +
+/// j_y f) / L}` (`K^` the kernel's alias-summed spectrum, `P` the pressure's DFT on
+/// the box, f the whole part of the row's offset from source row 0), i.e. the
+/// periodic convolution of the pressure with the part's kernel, which the box's
+/// width keeps free of images exactly as the table's. No 2-D inverse transform, no
+/// kernel table: per depth, the spectrum at the wavenumbers its decay reaches and one
+/// real inverse FFT per component. `lattice` is the section's (its offsets span the
+/// row's to the sources). Adds `sigma_c(x_i)`, `i < source.nx`, to `row`.
+#[allow(clippy::too_many_arguments)]
+fn remainder_on_row(
+    lattice: &OffsetLattice,
+    lambda: f64,
+    thickness: f64,
+    k1: f64,
+    radial: &Radial,
+    pass: Pass,
+    source: &RowSource,
+    row: &mut [Vec<f64>; COMPONENTS],
+) {
+    let spectrum = BoxSpectrum::new(lattice, lambda, thickness, k1, radial, pass);
+    let (ax, ay) = (&spectrum.ax, &spectrum.ay);
+    assert_eq!(ax.len, ay.len, "a square box");
+    assert_eq!(ax.frac, 0.0, "outputs at cell centres along x");
+    let pressure = source.spectrum(ax.len, ay.frac);
+    let half_x = ax.len / 2 + 1;
+    let sums: Vec<[Complex<f64>; COMPONENTS]> = (0..half_x)
+        .into_par_iter()
+        .map(|jx| {
+            let mut sum = [Complex::default(); COMPONENTS];
+            if !spectrum.column_reached(jx) {
+                return sum;
+            }
+            let column = pressure.column(jx);
+            for (jy, &p) in column.iter().enumerate() {
+                for (s, a) in sum.iter_mut().zip(spectrum.at(jx, jy)) {
+                    *s += a * p;
+                }
+            }
+            sum
+        })
+        .collect();
+    let fft_x = RealFftPlanner::<f64>::new().plan_fft_inverse(ax.len);
+    let mut spec = vec![Complex::default(); half_x];
+    let mut line = vec![0.0; ax.len];
+    for (c, out) in row.iter_mut().enumerate() {
+        for (dst, s) in spec.iter_mut().zip(&sums) {
+            *dst = s[c];
+        }
+        // Real to the truncation of the alias sums, as in `remainder_on_lattice`.
+        spec[0].im = 0.0;
+        spec[half_x - 1].im = 0.0;
+        fft_x
+            .process(&mut spec, &mut line)
+            .expect("FFT lengths are fixed by the plan");
+        for (o, v) in out.iter_mut().zip(&line[..source.nx]) {
+            *o += v;
+        }
+    }
+}
+
+/// The alias-summed spectrum of a part of the remainder on its periodic box (see
+/// [`remainder_on_lattice`]): `at(jx, jy)` is the box's Fourier coefficient of the
+/// six components (normalised for an inverse FFT), with the fractional offsets'
+/// phases; zero beyond the wavenumbers the decay `e^{-k lambda}` reaches.
+struct BoxSpectrum {
+    ax: Axis,
+    ay: Axis,
+    tx: Vec<AxisTerms>,
+    ty: Vec<AxisTerms>,
+    radial_table: RadialTable,
+    pass: Pass,
+    k1h: f64,
+    theta_cut: f64,
+    norm: f64,
+}
+
+/// Per base index of an axis and alias order: theta = k h and the weight (`sinc`,
+/// taper and the phase of the fractional offset).
+struct AxisTerms {
+    theta: Vec<f64>,
+    weight: Vec<Complex<f64>>,
+}
+
+impl BoxSpectrum {
+    fn new(
+        lattice: &OffsetLattice,
+        lambda: f64,
+        thickness: f64,
+        k1: f64,
+        radial: &Radial,
+        pass: Pass,
+    ) -> Self {
+        let h = lattice.cell;
+        let k1h = k1 * h;
+        // Aliases: |k| up to where e^{-k lambda} is negligible (in cells: k h = theta),
+        // or up to the long waves' band edge.
+        let mut theta_max = ALIAS_DECAY * h / lambda.max(1e-300);
+        if let Pass::Band { .. } = pass {
+            theta_max = theta_max.min(BAND_EDGE * k1h);
+        }
+        // Alias m covers theta in [2 pi m - pi, 2 pi m + pi].
+        let needed = ((theta_max + PI) / (2.0 * PI)).floor().min(1e9) as i64;
+        // Per axis: the alias orders kept and whether they are tapered. Offsets that
+        // are not whole cells along an axis (an XZ section on a row edge) put some of
+        // them on the loaded cell's edge, where the kernel varies on the scale lambda:
+        // below the surface that axis keeps up to `SUB_CELL_EDGE_ALIASES`. (At the
+        // surface the edge values with 128 and 2048 tapered orders agreed to 1e-11 of
+        // the peak, h1 = cell / 100 ... cell / 1e4, E1/E2 = 0.01, 3, 300, measured with
+        // the slope carrier at lambda; with 128 against the full expansion at h1 =
+        // cell / 60: `tests/coated_stress_sub_cell.rs`.)
+        let orders = |first: f64| -> (i64, bool) {
+            let edge = matches!(pass, Pass::Short { edge: true, .. });
+            let cap = if first == first.floor() || !edge {
+                SUB_CELL_ALIASES
+            } else {
+                SUB_CELL_EDGE_ALIASES
+            };
+            match pass {
+                Pass::Short { taper: true, .. } if needed > cap => (cap, true),
+                Pass::Short { taper: true, .. } => (needed.max(0), false),
+                Pass::Short { taper: false, .. } => (needed.clamp(0, FULL_ALIASES), false),
+                Pass::Band { .. } => (needed.max(0), false),
+            }
+        };
+        // A square box, so that the images are equally far in both directions.
+        let span = span_in_cells(lattice);
+        // The lowest wavenumber of the pass: its kernel reaches `REACH` over it.
+        let low = match pass {
+            Pass::Short { .. } => k1h,
+            Pass::Band { low } => low,
+        };
+        let reach = (REACH / low).ceil() as usize;
+        let len = fft_friendly((span + reach).max(2 * span + 2)).max(16);
+        let ax = Axis::new(lattice.x_first, orders(lattice.x_first), len);
+        let ay = Axis::new(lattice.y_first, orders(lattice.y_first), len);
+        let aliases = ax.aliases.max(ay.aliases);
+        // The taper's weight at theta along an axis: 1 up to half the wavenumbers the
+        // aliases cover, then a smooth step to 0 at their edge `(2 aliases + 1) pi`. As a
+        // smooth function of the wavenumber (not of the alias order) it is a low-pass
+        // filter whose real-space kernel has all moments zero, so it changes the kernel
+        // only where that varies on the scale `cell / aliases`.
+        let taper_weight = |a: &Axis, t: f64| {
+            if a.tapered {
+                let half = 0.5 * PI * (2 * a.aliases + 1) as f64;
+                taper((t.abs() - half) / half)
+            } else {
+                1.0
+            }
+        };
+        // Theta = k h of the table: up to the largest alias, capped by the decay (the
+        // sum below reads no theta beyond `theta_max`). Capping at `theta_max` rather
+        // than a period beyond it keeps the table at most 64 panels of the transfer's
+        // scale `h / (2 (lambda + h1))` (lambda >= h1), however thick the coating.
+        let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max);
+        // The longest length in the transfer's exponentials is about z + 2 h1 <= 2 lambda + 2 h1.
+        // Below k1 / 100 the high-pass factor is below 1e-16.
+        let radial_table =
+            RadialTable::new(theta_top, h, 2.0 * (lambda + thickness), 0.01 * low, radial);
+
+        // Per axis: for each base index and alias order, theta = k h, sinc and the phase
+        // of the fractional offset.
+        let terms = |a: &Axis| -> Vec<AxisTerms> {
+            let n_alias = (2 * a.aliases + 1) as usize;
+            (0..a.len)
+                .map(|j| {
+                    let mut theta = Vec::with_capacity(n_alias);
+                    let mut weight = Vec::with_capacity(n_alias);
+                    for m in -a.aliases..=a.aliases {
+                        let t = a.base(j) + 2.0 * PI * m as f64;
+                        theta.push(t);
+                        weight.push(Complex::from_polar(
+                            sinc(t / 2.0) * taper_weight(a, t),
+                            t * a.frac,
+                        ));
+                    }
+                    AxisTerms { theta, weight }
+                })
+                .collect()
+        };
+        let (tx, ty) = (terms(&ax), terms(&ay));
+        let norm = 1.0 / (ax.len * ay.len) as f64;
+        BoxSpectrum {
+            ax,
+            ay,
+            tx,
+            ty,
+            radial_table,
+            pass,
+            k1h,
+            // Beyond theta_max the remainder is below e^{-ALIAS_DECAY} of its scale.
+            theta_cut: theta_max,
+            norm,
+        }
+    }
+
+    /// `1 - chi(k)`, which is 1 to double precision beyond BAND_EDGE k1, or the band
+    /// `chi(k / k1) - chi(k / k_lo) = (1 - chi(k / k_lo)) - (1 - chi(k / k1))`
+    /// (accurate where both shares are near 1).
+    fn high_pass(&self, theta: f64) -> f64 {
+        let k1h = self.k1h;
+        match self.pass {
+            Pass::Short { .. } if theta > BAND_EDGE * k1h => 1.0,
+            Pass::Short { .. } => short_wave_share(theta, k1h),
+            Pass::Band { low } if theta > BAND_EDGE * low => long_wave_share(theta, k1h),
+            Pass::Band { low } => short_wave_share(theta, low) - short_wave_share(theta, k1h),
+        }
+    }
+
+    /// Whether any wavenumber of column jx is within the decay's reach.
+    fn column_reached(&self, jx: usize) -> bool {
+        self.tx[jx].theta.iter().any(|t| t.abs() <= self.theta_cut)
+    }
+
+    /// The six components' coefficient at base wavenumber `(jx, jy)`.
+    #[inline]
+    fn at(&self, jx: usize, jy: usize) -> [Complex<f64>; COMPONENTS] {
+        let (x, y) = (&self.tx[jx], &self.ty[jy]);
+        let theta_cut = self.theta_cut;
+        let mut acc = [Complex::<f64>::default(); COMPONENTS];
+        for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
+            if ty_.abs() > theta_cut {
+                continue;
+            }
+            for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
+                // |k| h; the wave numbers are bounded (a few times 2 pi),
+                // so hypot's overflow guard is not needed.
+                let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
+                if theta > theta_cut {
+                    continue;
+                }
+                let high_pass = self.high_pass(theta);
+                let r = self.radial_table.eval(theta).map(|v| v * high_pass);
+                let (c, s) = if theta > 0.0 {
+                    (tx_ / theta, ty_ / theta)
+                } else {
+                    (1.0, 0.0)
+                };
+                let w = wx * wy;
+                let (xixi, etaeta, zz, xiz) = (r[0], r[1], r[2], r[3]);
+                let shear = Complex::new(0.0, xiz) * w;
+                acc[0] += w * (xixi * c * c + etaeta * s * s);
+                acc[1] += w * (xixi * s * s + etaeta * c * c);
+                acc[2] += w * zz;
+                acc[3] += w * ((xixi - etaeta) * c * s);
+                acc[4] += shear * c;
+                acc[5] += shear * s;
+            }
+        }
+        acc.map(|a| a * self.norm)
+    }
 }
 
 /// The four wave-frame functions of `theta = k h` on Chebyshev panels, evaluated

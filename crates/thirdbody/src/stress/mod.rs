@@ -32,7 +32,7 @@ pub mod request;
 mod sections;
 
 pub use kernels::{
-    love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice,
+    love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice, RowSource,
     StressKernels, COMPONENTS,
 };
 pub use layered_kernels::{LayeredStressKernels, StressMethod};

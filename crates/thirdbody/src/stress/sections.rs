@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 
-use super::kernels::{InfluenceTable, OffsetLattice, StressKernels, COMPONENTS};
+use super::kernels::{InfluenceTable, OffsetLattice, RowSource, StressKernels, COMPONENTS};
 use crate::convolution::{ConvolutionPlan, Parallelism};
 use crate::grid::Grid;
 
@@ -168,6 +168,10 @@ pub(crate) fn xz_plane(
         y_first: y_first + m_first as f64,
         rows: m_last - m_first + 1,
     };
+    // The pressure and the row, for the part of the kernels a body sums against the
+    // pressure's spectrum (the row's offset from source row 0 is that of row l_max
+    // plus l_max).
+    let source = RowSource::new(pressure, nx, ny, y_first + l_max as f64);
     let scratch_len = forward.get_scratch_len().max(inverse.get_scratch_len());
     let scale = 1.0 / width as f64;
     let per_depth: Vec<Components> = per_thread_map(
@@ -182,7 +186,8 @@ pub(crate) fn xz_plane(
             )
         },
         |(table, real, spec, acc, scratch), &z| {
-            kernels.fill(z, &lattice, table);
+            let mut row: Components = std::array::from_fn(|_| vec![0.0; nx]);
+            kernels.fill_row(z, &lattice, table, &source, &mut row);
             let mut out: Components = Default::default();
             for (c, o) in out.iter_mut().enumerate() {
                 acc.fill(Complex::default());
@@ -208,7 +213,7 @@ pub(crate) fn xz_plane(
                 inverse
                     .process_with_scratch(acc, real, scratch)
                     .expect("FFT lengths are fixed by the plan");
-                o.extend(real[..nx].iter().map(|v| v * scale));
+                o.extend(real[..nx].iter().zip(&row[c]).map(|(v, r)| v * scale + r));
             }
             depth_done();
             out

@@ -1,0 +1,142 @@
+//! XZ sections of layered bodies sum their remainder's short waves against the
+//! pressure's spectrum on a periodic box (one row of outputs, no kernel table); the
+//! planes and blocks keep the kernel tables. Here the XZ section is checked against
+//! the direct sum `sigma_c(x_i, y) = sum_{k,l} K_c(x_i - x_k, y - y_l) p_{k,l}` of
+//! the kernel table (`StressKernels::fill`, checked against brute-force quadrature in
+//! `coated_stress_brute_force.rs` and `layered_stress_kernels.rs`) on the same
+//! offsets, for rows on a cell edge, on a cell centre and in between, at depths in
+//! the top layer and below it, for a coating and a stack of three layers, with an
+//! asymmetric pressure. The two routes share the kernels' split, box and aliases, so
+//! they agree to rounding.
+
+use thirdbody::body::layered::{Base, Ply, Stack};
+use thirdbody::stress::{stress_kernels, stresses, InfluenceTable, OffsetLattice, Section, Side};
+use thirdbody::{Body, Elastic, Grid};
+
+fn elastic(young: f64) -> Elastic {
+    Elastic {
+        young,
+        poisson: 0.3,
+    }
+}
+
+/// A lopsided bump, nonzero on every cell.
+fn pressure(grid: &Grid) -> Vec<f64> {
+    let mut p = vec![0.0; grid.len()];
+    for j in 0..grid.ny() {
+        for i in 0..grid.nx() {
+            let (x, y) = (grid.x(i), grid.y(j));
+            p[grid.index(i, j)] =
+                (-(x - 0.2).powi(2) - 2.0 * (y + 0.1).powi(2)).exp() * (1.3 + 0.4 * x - 0.2 * y);
+        }
+    }
+    p
+}
+
+/// The direct sum of the kernel table along the row y at depth z.
+fn direct(grid: &Grid, p: &[f64], body: &Body, y: f64, z: f64) -> [Vec<f64>; 6] {
+    let (nx, ny, h) = (grid.nx(), grid.ny(), grid.cell());
+    let kernels = stress_kernels(body, Side::Below).unwrap();
+    let lattice = OffsetLattice {
+        cell: h,
+        x_first: -(nx as f64 - 1.0),
+        cols: 2 * nx - 1,
+        y_first: (y - grid.y(ny - 1)) / h,
+        rows: ny,
+    };
+    let mut table = InfluenceTable::default();
+    kernels.fill(z, &lattice, &mut table);
+    std::array::from_fn(|c| {
+        (0..nx)
+            .map(|i| {
+                let mut sum = 0.0;
+                for l in 0..ny {
+                    for k in 0..nx {
+                        // Offset i - k along x, row m = ny - 1 - l along y.
+                        let col = i + nx - 1 - k;
+                        sum += table.get(c, col, ny - 1 - l) * p[grid.index(k, l)];
+                    }
+                }
+                sum
+            })
+            .collect()
+    })
+}
+
+fn check(body: &Body, depths: &[f64]) {
+    let grid = Grid::centred(20, 14, 0.1, [0.0, 0.0]).unwrap();
+    let p = pressure(&grid);
+    // A cell edge (y = 0), a cell centre, and in between.
+    for y in [0.0, grid.y(5), 0.237] {
+        let section = Section::XzPlane {
+            y,
+            depths: depths.to_vec(),
+        };
+        let field = stresses(&grid, &p, body, &section).unwrap();
+        for (k, &z) in depths.iter().enumerate() {
+            let expected = direct(&grid, &p, body, y, z);
+            let peak = expected
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            let mut worst = 0.0f64;
+            for (c, e) in expected.iter().enumerate() {
+                for (i, v) in e.iter().enumerate() {
+                    let got = field.components[c][field.index(i, 0, k)];
+                    worst = worst.max((got - v).abs());
+                }
+            }
+            println!("y {y:.3} z {z}: {:.2e} of the peak {peak:.3}", worst / peak);
+            assert!(worst < 1e-12 * peak, "y {y} z {z}: {worst:e} of {peak}");
+        }
+    }
+}
+
+#[test]
+fn coating_xz_section_is_the_direct_sum_of_the_table() {
+    // h1 = 8 cells: the top layer's depths here decay over more than 10 cells (one
+    // box, no bands), as do the substrate's.
+    let body = Body::coated(elastic(3.0), 0.8, elastic(1.0));
+    check(&body, &[0.0, 0.3, 0.55, 1.2, 2.5]);
+}
+
+#[test]
+fn soft_coating_xz_section_is_the_direct_sum_of_the_table() {
+    let body = Body::coated(elastic(0.2), 0.8, elastic(1.0));
+    check(&body, &[0.1, 1.5]);
+}
+
+#[test]
+fn three_layer_xz_section_is_the_direct_sum_of_the_table() {
+    let body = Body::Layered(Stack {
+        layers: vec![
+            Ply {
+                material: elastic(3.0),
+                thickness: 0.3,
+            },
+            Ply {
+                material: elastic(0.5),
+                thickness: 0.3,
+            },
+            Ply {
+                material: elastic(2.0),
+                thickness: 0.4,
+            },
+        ],
+        base: Base::HalfSpace(elastic(1.0)),
+    });
+    // In the top layer (bands), in the second and third layers and the base.
+    check(&body, &[0.05, 0.45, 1.1, 1.5, 3.0]);
+}
+
+#[test]
+fn rigid_based_xz_section_is_the_direct_sum_of_the_table() {
+    let body = Body::Layered(Stack {
+        layers: vec![Ply {
+            material: elastic(2.0),
+            thickness: 2.0,
+        }],
+        base: Base::Rigid(thirdbody::body::layered::BaseContact::Bonded),
+    });
+    check(&body, &[0.2, 1.4]);
+}
