@@ -255,6 +255,10 @@ pub struct RowSource<'a> {
     /// The row's y offset from source row 0's centre, in cells.
     pub offset: f64,
     spectra: std::sync::Mutex<Vec<std::sync::Arc<PressureSpectrum>>>,
+    /// Moments of the pressure against a lattice's interpolation weights, per
+    /// lattice and split wavenumber.
+    #[allow(clippy::type_complexity)]
+    moments: std::sync::Mutex<Vec<(OffsetLattice, f64, std::sync::Arc<Vec<f64>>)>>,
 }
 
 impl<'a> RowSource<'a> {
@@ -268,7 +272,35 @@ impl<'a> RowSource<'a> {
             ny,
             offset,
             spectra: std::sync::Mutex::new(Vec::new()),
+            moments: std::sync::Mutex::new(Vec::new()),
         }
+    }
+
+    /// The pressure, `[l * nx + k]`.
+    pub(crate) fn pressure(&self) -> &[f64] {
+        self.pressure
+    }
+
+    /// Source rows (cells along y).
+    pub(crate) fn rows(&self) -> usize {
+        self.ny
+    }
+
+    /// Moments of the pressure for `lattice` and the split `k1` (built by `build` on
+    /// first use, then shared between depths and threads).
+    pub(crate) fn moments(
+        &self,
+        lattice: &OffsetLattice,
+        k1: f64,
+        build: impl FnOnce() -> Vec<f64>,
+    ) -> std::sync::Arc<Vec<f64>> {
+        let mut moments = self.moments.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, _, m)) = moments.iter().find(|(l, k, _)| l == lattice && *k == k1) {
+            return m.clone();
+        }
+        let m = std::sync::Arc::new(build());
+        moments.push((*lattice, k1, m.clone()));
+        m
     }
 
     /// The pressure's spectrum on a periodic box of `len` x `len` cells, with the

@@ -105,7 +105,9 @@ use rustfft::FftPlanner;
 use super::kernels::{
     HomogeneousStressKernels, InfluenceTable, OffsetLattice, RowSource, StressKernels, COMPONENTS,
 };
-use super::long_wave::{long_wave_kernels, long_wave_share, short_wave_share, Radial, BAND_EDGE};
+use super::long_wave::{
+    long_wave_kernels, long_wave_on_row, long_wave_share, short_wave_share, Radial, BAND_EDGE,
+};
 use crate::body::layered::{Base, LayeredSolver, Stack};
 use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
@@ -512,9 +514,11 @@ impl LayeredStressKernels {
             edge: false,
         };
         let thickness = self.stack.thickness();
-        let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
         match row {
-            Some((source, row)) if lattice.x_first == lattice.x_first.floor() => {
+            Some((source, row))
+                if lattice.x_first == -(source.nx as f64 - 1.0)
+                    && lattice.cols == 2 * source.nx - 1 =>
+            {
                 remainder_on_row(
                     lattice,
                     lambda,
@@ -525,13 +529,11 @@ impl LayeredStressKernels {
                     source,
                     row,
                 );
-                for (t, l) in table.values.iter_mut().zip(long) {
-                    for (v, b) in t.iter_mut().zip(l) {
-                        *v += b;
-                    }
-                }
+                let basis = &mut table.scratch.long_wave;
+                long_wave_on_row(lattice, k1, &remainder, basis, source, row);
             }
             _ => {
+                let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
                 let short =
                     remainder_on_lattice(lattice, lambda, thickness, k1, &remainder, short_waves);
                 for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {

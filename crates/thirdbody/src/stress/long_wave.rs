@@ -25,7 +25,7 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 use realfft::num_complex::Complex;
 
-use super::kernels::{OffsetLattice, COMPONENTS};
+use super::kernels::{OffsetLattice, RowSource, COMPONENTS};
 use crate::body::layered::{LayeredSolver, Stack};
 use crate::body::quadrature::{GaussLegendre, SharedPanels};
 
@@ -231,7 +231,152 @@ pub(super) fn long_wave_kernels(
     basis: &mut LongWaveBasis,
 ) -> [Vec<f64>; COMPONENTS] {
     basis.prepare(lattice, k1);
-    let basis = &*basis;
+    let Some(samples) = long_wave_samples(radial, basis) else {
+        return std::array::from_fn(|_| vec![0.0; lattice.cols * lattice.rows]);
+    };
+    let (x_axis, y_axis) = basis.axes.as_ref().expect("prepared above");
+    let (nx, ny, cols) = (x_axis.nodes.len(), y_axis.nodes.len(), lattice.cols);
+    let mut out: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| Vec::new());
+    for (c, o) in out.iter_mut().enumerate() {
+        // Along x: u[j][col] = sum_i G[j][i] Wx[i][col].
+        let u: Vec<Vec<f64>> = (0..ny)
+            .into_par_iter()
+            .map(|j| x_axis.interpolate(|i| samples[j * nx + i][c]))
+            .collect();
+        // Along y: out[row][col] = sum_j Wy[j][row] u[j][col].
+        let rows: Vec<Vec<f64>> = (0..lattice.rows)
+            .into_par_iter()
+            .map(|m| {
+                let mut line = vec![0.0; cols];
+                y_axis.accumulate(m, &u, &mut line);
+                line
+            })
+            .collect();
+        *o = rows.concat();
+    }
+    out
+}
+
+/// The long waves' stresses along the row of `source` (added to `row`), for the
+/// offsets of `lattice` (the section's: columns `-(nx - 1) ..= nx - 1`, one row per
+/// loaded source row): with the kernel's tensor interpolant `K(x, y) = sum_{a,b}
+/// G_ab Wx_a(x) Wy_b(y)` (the samples G of [`long_wave_kernels`] at the Chebyshev
+/// nodes, the barycentric weights W), `sigma(x_i) = sum_{k,l} p_kl K(x_i - x_k, y -
+/// y_l) = sum_{a,b} G_ab Q_ab(i)`, where the pressure's moments `Q_ab(i) = sum_{k,l}
+/// p_kl Wx_a(x_i - x_k) Wy_b(y - y_l)` depend on the lattice and the pressure only
+/// (`source` keeps them for all depths): per depth `(a, b, i)` products instead of
+/// the interpolation to every offset and the row transforms.
+pub(super) fn long_wave_on_row(
+    lattice: &OffsetLattice,
+    k1: f64,
+    radial: &Radial,
+    basis: &mut LongWaveBasis,
+    source: &RowSource,
+    row: &mut [Vec<f64>; COMPONENTS],
+) {
+    basis.prepare(lattice, k1);
+    let Some(samples) = long_wave_samples(radial, basis) else {
+        return;
+    };
+    let (x_axis, y_axis) = basis.axes.as_ref().expect("prepared above");
+    let moments = source.moments(lattice, k1, || {
+        pressure_moments(lattice, x_axis, y_axis, source)
+    });
+    let nx = source.nx;
+    for (g, q) in samples.iter().zip(moments.chunks_exact(nx)) {
+        for (out, &gc) in row.iter_mut().zip(g) {
+            for (o, &v) in out.iter_mut().zip(q) {
+                *o += gc * v;
+            }
+        }
+    }
+}
+
+/// The pressure's moments `Q_ab(i)` of [`long_wave_on_row`], `[(b * nodes_x + a) *
+/// nx + i]` (b the y node, a the x node): `R_b(k) = sum_l p_kl Wy_b(row of l)`, then
+/// along x the convolution `Q_ab(i) = sum_k Wx_a(column of i - k) R_b(k)` by FFT.
+fn pressure_moments(
+    lattice: &OffsetLattice,
+    x_axis: &InterpolationAxis,
+    y_axis: &InterpolationAxis,
+    source: &RowSource,
+) -> Vec<f64> {
+    let (nx, ny) = (source.nx, source.rows());
+    let pressure = source.pressure();
+    assert_eq!(lattice.cols, 2 * nx - 1, "the section's columns");
+    assert_eq!(lattice.x_first, -(nx as f64 - 1.0), "the section's columns");
+    // Source row l sits at lattice row m = offset - l - y_first.
+    let lattice_row = |l: usize| -> Option<usize> {
+        let m = (source.offset - l as f64 - lattice.y_first).round();
+        (m >= 0.0 && m < lattice.rows as f64).then_some(m as usize)
+    };
+    let (nodes_x, nodes_y) = (x_axis.nodes.len(), y_axis.nodes.len());
+    let along_y: Vec<Vec<f64>> = (0..nodes_y)
+        .map(|b| {
+            let mut r = vec![0.0; nx];
+            for l in 0..ny {
+                let line = &pressure[l * nx..(l + 1) * nx];
+                match lattice_row(l) {
+                    Some(m) => {
+                        let w = y_axis.weights[b * y_axis.count + m];
+                        for (acc, &p) in r.iter_mut().zip(line) {
+                            *acc += w * p;
+                        }
+                    }
+                    None => assert!(
+                        line.iter().all(|&p| p == 0.0),
+                        "a loaded source row outside the lattice"
+                    ),
+                }
+            }
+            r
+        })
+        .collect();
+    // Linear convolution of the columns' weights (2 nx - 1) with R_b (nx).
+    let len = (3 * nx).next_power_of_two();
+    let mut planner = realfft::RealFftPlanner::<f64>::new();
+    let forward = planner.plan_fft_forward(len);
+    let inverse = planner.plan_fft_inverse(len);
+    let transform = |values: &[f64]| {
+        let mut real = vec![0.0; len];
+        real[..values.len()].copy_from_slice(values);
+        let mut spec = vec![Complex::default(); len / 2 + 1];
+        forward
+            .process(&mut real, &mut spec)
+            .expect("FFT lengths are fixed by the plan");
+        spec
+    };
+    let weights_x: Vec<Vec<Complex<f64>>> = (0..nodes_x)
+        .into_par_iter()
+        .map(|a| transform(&x_axis.weights[a * x_axis.count..(a + 1) * x_axis.count]))
+        .collect();
+    let scale = 1.0 / len as f64;
+    (0..nodes_y)
+        .into_par_iter()
+        .flat_map_iter(|b| {
+            let r = transform(&along_y[b]);
+            let mut spec = vec![Complex::default(); len / 2 + 1];
+            let mut real = vec![0.0; len];
+            let mut out = Vec::with_capacity(nodes_x * nx);
+            for w in &weights_x {
+                for ((s, a), c) in spec.iter_mut().zip(w).zip(&r) {
+                    *s = a * c;
+                }
+                inverse
+                    .process(&mut spec, &mut real)
+                    .expect("FFT lengths are fixed by the plan");
+                // Q(i) = (W * R)(i + nx - 1).
+                out.extend(real[nx - 1..2 * nx - 1].iter().map(|v| v * scale));
+            }
+            out
+        })
+        .collect()
+}
+
+/// The long waves' kernel at the tensor nodes of `basis` (`[j * nodes_x + i]`, j the
+/// y node): the transfer at the k nodes, the Hankel transforms at the r nodes and the
+/// kernel at the tensor nodes. `None` if the transfer vanishes.
+fn long_wave_samples(radial: &Radial, basis: &LongWaveBasis) -> Option<Vec<[f64; COMPONENTS]>> {
     let (r_max, panels) = (basis.r_max, basis.panels);
     let n_nodes = basis.ks.len();
 
@@ -265,21 +410,33 @@ pub(super) fn long_wave_kernels(
         .filter(|&e| size[e] > 1e-15 * largest && largest > 0.0)
         .collect();
     if kept.is_empty() {
-        return std::array::from_fn(|_| vec![0.0; lattice.cols * lattice.rows]);
+        return None;
     }
     let order_of = |e: usize| (e / 2) % (MAX_ORDER + 1);
     let top_order = kept.iter().map(|&e| order_of(e)).max().unwrap_or(0);
 
     // Hankel transforms at the Chebyshev points in r.
     let orders = MAX_ORDER + 1;
+    // The kept entries of each node, contiguous, and the nodes that matter: a node
+    // whose every kept entry is below 1e-18 of the largest sum bound adds less than
+    // that to any transform (|J_n| <= 1); near k = 0 the graded panels hold many.
+    let kept_order: Vec<usize> = kept.iter().map(|&e| order_of(e)).collect();
+    let floor = 1e-18 * largest;
+    let nodes: Vec<(usize, Vec<f64>)> = per_node
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| kept.iter().any(|&e| f[e].abs() > floor))
+        .map(|(node, f)| (node, kept.iter().map(|&e| f[e]).collect()))
+        .collect();
     let transforms: Vec<Vec<f64>> = (0..basis.r_count)
         .into_par_iter()
         .map(|ri| {
             let mut sums = vec![0.0; kept.len()];
             let row = &basis.bessel[ri * n_nodes * orders..][..n_nodes * orders];
-            for (j, f) in row.chunks_exact(orders).zip(&per_node) {
-                for (s, &e) in sums.iter_mut().zip(&kept) {
-                    *s += f[e] * j[order_of(e)];
+            for (node, f) in &nodes {
+                let j = &row[node * orders..][..orders];
+                for ((s, &fe), &n) in sums.iter_mut().zip(f).zip(&kept_order) {
+                    *s += fe * j[n];
                 }
             }
             sums
@@ -327,26 +484,7 @@ pub(super) fn long_wave_kernels(
                 .collect::<Vec<_>>()
         })
         .collect();
-    let (nx, ny, cols) = (x_axis.nodes.len(), y_axis.nodes.len(), lattice.cols);
-    let mut out: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| Vec::new());
-    for (c, o) in out.iter_mut().enumerate() {
-        // Along x: u[j][col] = sum_i G[j][i] Wx[i][col].
-        let u: Vec<Vec<f64>> = (0..ny)
-            .into_par_iter()
-            .map(|j| x_axis.interpolate(|i| samples[j * nx + i][c]))
-            .collect();
-        // Along y: out[row][col] = sum_j Wy[j][row] u[j][col].
-        let rows: Vec<Vec<f64>> = (0..lattice.rows)
-            .into_par_iter()
-            .map(|m| {
-                let mut line = vec![0.0; cols];
-                y_axis.accumulate(m, &u, &mut line);
-                line
-            })
-            .collect();
-        *o = rows.concat();
-    }
-    out
+    Some(samples)
 }
 
 /// One axis of the tensor interpolation: the sample points (Chebyshev points of the
