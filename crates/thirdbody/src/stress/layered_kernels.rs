@@ -51,6 +51,16 @@
 //!    [`InfluenceTable`] keeps them (`KernelScratch`) for all the depths of a
 //!    section, so a depth pays only for its transfer at the k nodes and the sums.
 //!
+//!    For an XZ section ([`StressKernels::fill_row`]: one row of outputs) neither
+//!    part goes through the kernel table: (a) is summed on the same box directly
+//!    against the pressure's DFT on that box (`remainder_on_row`: per wavenumber the
+//!    alias-summed spectrum times the pressure's, summed over ky with the row's
+//!    phase, one inverse FFT along x; the same periodic convolution as the table's,
+//!    so the same images, none within reach), and (b) against the pressure's moments
+//!    of the long waves' tensor interpolant (`long_wave::long_wave_on_row`), which
+//!    the section keeps for all depths. Only Love's kernels and the carriers are
+//!    tabulated; banded, sub-cell, thin-film and thick-coating depths keep the table.
+//!
 //!    Love's kernels are linear in nu, so the carriers' pair (nu = 0 and its
 //!    derivative) comes from one evaluation of the corner primitives, and below
 //!    the top layer, where lambda = z, it gives the depth's own Love kernels too.
@@ -517,7 +527,8 @@ impl LayeredStressKernels {
         match row {
             Some((source, row))
                 if lattice.x_first == -(source.nx as f64 - 1.0)
-                    && lattice.cols == 2 * source.nx - 1 =>
+                    && lattice.cols == 2 * source.nx - 1
+                    && box_cells(span_in_cells(lattice), k1 * lattice.cell) <= ROW_BOX_LIMIT =>
             {
                 remainder_on_row(
                     lattice,
@@ -1043,6 +1054,20 @@ fn remainder_on_row(
     }
 }
 
+/// The periodic box (cells per side) of a pass whose lowest wavenumber is `low` (times
+/// the cell) for offsets `span` cells from the loaded cell: its kernel reaches `REACH /
+/// low` cells, so no image of the loaded cell comes that near an offset.
+fn box_cells(span: usize, low: f64) -> usize {
+    let reach = (REACH / low).ceil() as usize;
+    fft_friendly((span + reach).max(2 * span + 2)).max(16)
+}
+
+/// The largest periodic box (cells per side) on which an XZ section sums the short
+/// waves against the pressure's spectrum, which it keeps (`len^2 / 2` complex
+/// values, 134 MB at this size); a larger box (a window of over ~680 cells) keeps the
+/// kernel table, whose lattice sum keeps one column at a time.
+const ROW_BOX_LIMIT: usize = 4096;
+
 /// The alias-summed spectrum of a part of the remainder on its periodic box (see
 /// [`remainder_on_lattice`]): `at(jx, jy)` is the box's Fourier coefficient of the
 /// six components (normalised for an inverse FFT), with the fractional offsets'
@@ -1114,8 +1139,7 @@ impl BoxSpectrum {
             Pass::Short { .. } => k1h,
             Pass::Band { low } => low,
         };
-        let reach = (REACH / low).ceil() as usize;
-        let len = fft_friendly((span + reach).max(2 * span + 2)).max(16);
+        let len = box_cells(span, low);
         let ax = Axis::new(lattice.x_first, orders(lattice.x_first), len);
         let ay = Axis::new(lattice.y_first, orders(lattice.y_first), len);
         let aliases = ax.aliases.max(ay.aliases);

@@ -11,7 +11,10 @@
 //!   loaded source rows, each a 1-D DC-FFT along x: with `P_l` the spectrum of
 //!   source row l (computed once), `sigma_c(., y, z) = IFFT(sum_l K_c,l P_l)`. Per
 //!   depth that costs one real FFT of length `2 nx` per loaded row and component
-//!   instead of a 2-D forward and inverse pair per component.
+//!   instead of a 2-D forward and inverse pair per component. A body may sum a part
+//!   of its kernels otherwise ([`StressKernels::fill_row`]): a layered body's
+//!   remainder is summed against the pressure's spectrum and moments, and only
+//!   Love's kernels and the carriers go through the table.
 
 use std::sync::Arc;
 
