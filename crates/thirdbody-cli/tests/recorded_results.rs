@@ -52,5 +52,5 @@ fn every_bundled_example_gives_the_recorded_summary() {
     compare_or_record("recorded_summaries.json", Value::Object(all));
 }
 
-// The reproduce data are compared in `tests/reproduce.rs`, which runs `reproduce`
-// once for its own checks and this one.
+// The reproduce data are compared in `tests/integration/reproduce.rs`, which runs
+// `reproduce` once for its own checks and this one.

@@ -891,7 +891,7 @@ enum ColumnWork<'a> {
 /// the DC-FFT is tested against.
 ///
 /// Not part of the API: public only for the integration tests that compare the
-/// DC-FFT with it (`tests/threads.rs`, `tests/coated_kernel.rs`).
+/// DC-FFT with it (`tests/integration/threads.rs`, `tests/coated_kernel.rs`).
 #[doc(hidden)]
 pub fn direct_convolution(
     nx: usize,

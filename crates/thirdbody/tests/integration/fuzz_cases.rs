@@ -27,16 +27,16 @@ fn count(k: usize) {
 use thirdbody::{solve, SolverParams};
 
 const EXAMPLES: [&str; 10] = [
-    include_str!("../../../examples/paper_fig3.toml"),
-    include_str!("../../../examples/hertz.toml"),
-    include_str!("../../../examples/ellipsoid_si.toml"),
-    include_str!("../../../examples/paper_fig7.toml"),
-    include_str!("../../../examples/paper_fig10a.toml"),
-    include_str!("../../../examples/paper_fig12b_thick_coating.toml"),
-    include_str!("../../../examples/three_layer_coating.toml"),
-    include_str!("../../../examples/polymer_liner_rigid.toml"),
-    include_str!("../../../examples/fractional_zener_rubber.toml"),
-    include_str!("../../../examples/sweeps/zener_body_and_layer.toml"),
+    include_str!("../../../../examples/paper_fig3.toml"),
+    include_str!("../../../../examples/hertz.toml"),
+    include_str!("../../../../examples/ellipsoid_si.toml"),
+    include_str!("../../../../examples/paper_fig7.toml"),
+    include_str!("../../../../examples/paper_fig10a.toml"),
+    include_str!("../../../../examples/paper_fig12b_thick_coating.toml"),
+    include_str!("../../../../examples/three_layer_coating.toml"),
+    include_str!("../../../../examples/polymer_liner_rigid.toml"),
+    include_str!("../../../../examples/fractional_zener_rubber.toml"),
+    include_str!("../../../../examples/sweeps/zener_body_and_layer.toml"),
 ];
 
 /// Values a hostile user might write in place of a number.

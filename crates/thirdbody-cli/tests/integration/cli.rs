@@ -3,7 +3,7 @@
 //! range, and no file in the output folder; a successful solve writes every output
 //! with the documented keys and shapes.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

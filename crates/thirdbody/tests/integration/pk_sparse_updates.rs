@@ -4,7 +4,7 @@
 //! solution must be the one the recomputing solver finds, and the direct sums must
 //! actually have been used (second method: the same operator with them refused).
 
-mod cases;
+use crate::cases;
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicUsize, Ordering};

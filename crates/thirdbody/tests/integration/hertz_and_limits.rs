@@ -1,7 +1,7 @@
 //! The layer-free sphere against Hertz's closed form
 //! (Johnson, Contact Mechanics, eq. 4.22-4.23), and the limits of the layer model.
 
-mod cases;
+use crate::cases;
 
 use std::f64::consts::PI;
 

@@ -7,8 +7,7 @@
 use thirdbody::convolution::{direct_convolution, ConvolutionPlan, PARALLEL_MIN_CELLS};
 use thirdbody::*;
 
-mod bundled;
-use bundled::bundled;
+use crate::bundled::bundled;
 
 fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()

@@ -1,7 +1,7 @@
 //! Hostile input at the command line: each ends with one line naming the
 //! cause and exit code 2, or succeeds; none panics (exit 101) or aborts (134).
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 use std::path::Path;

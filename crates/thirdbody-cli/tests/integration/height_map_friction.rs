@@ -7,7 +7,7 @@
 //! (an independent path: the closed-form slope x / R) to 1e-4, and
 //! `friction_coefficient` must equal `moment / (R Q)` (paper eq. 12) to 1e-4.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

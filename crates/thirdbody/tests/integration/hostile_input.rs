@@ -1,7 +1,7 @@
 //! Hostile and extreme input reaching the library: each ends at once with
 //! an error naming the key or the cause, never a panic, a hang or a non-finite result.
 
-mod cases;
+use crate::cases;
 
 use thirdbody::stress::{derived::principal_stresses, SectionKind, StressRequest};
 use thirdbody::{solve, Body, Case, Elastic, Error, Slider, SolverParams};

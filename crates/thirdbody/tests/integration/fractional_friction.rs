@@ -6,7 +6,7 @@
 //! maxima. Sphere R = 1 on the paper's elastic half-space (E2 = 1), Q = 5e-6, linear
 //! law, C_g = C1 = 0.01, tau = 1, 32 x 32 cells.
 
-mod cases;
+use crate::cases;
 
 use cases::*;
 use thirdbody::*;

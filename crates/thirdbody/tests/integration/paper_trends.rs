@@ -1,7 +1,7 @@
 //! The paper's qualitative findings on its own parameters
 //! (section 4: Q' = 5e-6, V' = 1e-3, nu2 = 0.3, C' = 0.02; Fig. 8: Q' = 25e-6).
 
-mod cases;
+use crate::cases;
 
 use cases::*;
 use thirdbody::*;

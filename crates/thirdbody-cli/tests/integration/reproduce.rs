@@ -3,7 +3,7 @@
 //! and in the report is finite, and the report names every figure with the paper's
 //! printed numbers beside ours.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! from and a hash of the canonical case; `thirdbody cite` prints the references,
 //! those of one case with its case file; `--version` names the commit.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 use std::process::Command;

@@ -9,7 +9,7 @@
 //! (it names the folding) instead of returning a result. Every other corner must
 //! converge.
 
-mod cases;
+use crate::cases;
 
 use cases::*;
 use thirdbody::*;

@@ -224,29 +224,29 @@ fn parse(text: &str, cells: usize) -> Case {
 /// The cases: the bundled examples on 32² grids, and the paper's Fig. 3 layer
 /// replaced by every other rheology and law, on a height map and on a fixed window.
 fn cases() -> Vec<(String, Case)> {
-    let fig3 = parse(include_str!("../../../examples/paper_fig3.toml"), 32);
+    let fig3 = parse(include_str!("../../../../examples/paper_fig3.toml"), 32);
     let mut out = vec![
         (
             "hertz".to_string(),
-            parse(include_str!("../../../examples/hertz.toml"), 32),
+            parse(include_str!("../../../../examples/hertz.toml"), 32),
         ),
         ("paper_fig3".into(), fig3.clone()),
         (
             "ellipsoid_si".into(),
-            parse(include_str!("../../../examples/ellipsoid_si.toml"), 32),
+            parse(include_str!("../../../../examples/ellipsoid_si.toml"), 32),
         ),
         (
             "paper_fig7".into(),
-            parse(include_str!("../../../examples/paper_fig7.toml"), 32),
+            parse(include_str!("../../../../examples/paper_fig7.toml"), 32),
         ),
         (
             "paper_fig10a".into(),
-            parse(include_str!("../../../examples/paper_fig10a.toml"), 32),
+            parse(include_str!("../../../../examples/paper_fig10a.toml"), 32),
         ),
         (
             "paper_fig12a_thin_coating".into(),
             parse(
-                include_str!("../../../examples/paper_fig12a_thin_coating.toml"),
+                include_str!("../../../../examples/paper_fig12a_thin_coating.toml"),
                 32,
             ),
         ),
@@ -385,7 +385,7 @@ fn cases() -> Vec<(String, Case)> {
         heights,
     });
     out.push(("height_map".into(), map));
-    let mut fixed = parse(include_str!("../../../examples/hertz.toml"), 32);
+    let mut fixed = parse(include_str!("../../../../examples/hertz.toml"), 32);
     fixed.grid.half_width = Some([0.04, 0.04]);
     fixed.grid.centre = Some([0.005, -0.002]);
     out.push(("fixed_window".into(), fixed));
@@ -595,7 +595,7 @@ fn every_case_of_the_test_is_drawn() {
 /// naming the result, instead of writing an infinite moment.
 #[test]
 fn the_issues_extreme_units_give_the_dimensionless_answer() {
-    let hertz = parse(include_str!("../../../examples/hertz.toml"), 32);
+    let hertz = parse(include_str!("../../../../examples/hertz.toml"), 32);
     let reference = solve(&hertz, &tight()).unwrap();
     for scale in [1e-100, 1e-50, 1e50] {
         let f = Factors {

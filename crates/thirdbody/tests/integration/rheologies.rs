@@ -2,7 +2,7 @@
 //! for every preset, the fast- and slow-sliding limits, the Zener friction peak,
 //! presets that must coincide, and the dense reference on 24 x 24.
 
-mod cases;
+use crate::cases;
 
 use cases::*;
 use thirdbody::*;

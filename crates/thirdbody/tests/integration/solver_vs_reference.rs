@@ -2,7 +2,7 @@
 //! direct reference (the paper's system 6 with LU and an active-set loop) give the
 //! same discrete solution on a 24 x 24 grid.
 
-mod cases;
+use crate::cases;
 
 use cases::*;
 use thirdbody::*;

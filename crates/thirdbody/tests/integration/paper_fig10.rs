@@ -14,7 +14,7 @@
 //!   range 0.2..0.45 p_max (Hertz: 0.31 p_max at 0.48 a; Johnson, Contact Mechanics,
 //!   §3.4): a check against an independent value that catches unit or scaling slips.
 
-mod cases;
+use crate::cases;
 
 use cases::{layered, sigmoid};
 use thirdbody::stress::Section;
