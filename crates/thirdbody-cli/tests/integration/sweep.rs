@@ -10,31 +10,9 @@ use std::time::{Duration, Instant};
 
 use thirdbody_cli::sweep::{merge, run, RunOptions, Shard, Sweep};
 
-/// The paper's Fig. 3 case (sigmoid layer on a homogeneous half-space) without a
-/// [sweep] section; tests vary it.
-const BASE: &str = r#"
-[slider]
-shape = "sphere"
-radius = 1.0
-
-[substrate]
-young = 1.0
-poisson = 0.3
-
-[layer]
-compliance = 0.02
-relaxation_time = 1.0
-law = "sigmoid"
-delta = 0.5
-p0 = 0.005
-
-[loading]
-normal_load = 25e-6
-velocity = 1e-3
-
-[grid]
-cells = [32, 32]
-"#;
+/// The paper's Fig. 8 case (sigmoid layer on a homogeneous half-space) on 32 x 32
+/// cells without a [sweep] section; tests vary it (shared with the engine's tests).
+const BASE: &str = include_str!("../../../thirdbody-engine/tests/data/sweep_base.toml");
 
 fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")

@@ -295,25 +295,8 @@ impl MapCache {
 mod tests {
     use super::*;
 
-    const BASE: &str = r#"
-[slider]
-shape = "sphere"
-radius = 1.0
-[substrate]
-young = 1.0
-poisson = 0.3
-[layer]
-compliance = 0.02
-relaxation_time = 1.0
-law = "sigmoid"
-delta = 0.5
-p0 = 0.005
-[loading]
-normal_load = 25e-6
-velocity = 1e-3
-[grid]
-cells = [16, 16]
-"#;
+    /// The sweep tests' base case (shared with the command line's).
+    const BASE: &str = include_str!("../../tests/data/sweep_base.toml");
 
     fn sweep(args: &[&str]) -> Result<Sweep, SweepError> {
         let args: Vec<String> = args.iter().map(|s| s.to_string()).collect();

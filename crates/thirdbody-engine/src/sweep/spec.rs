@@ -433,29 +433,11 @@ fn resolve_key(known: &[String], key: &str) -> Result<String, String> {
 mod tests {
     use super::*;
 
-    const BASE: &str = r#"
-[slider]
-shape = "sphere"
-radius = 1.0
-[substrate]
-young = 1.0
-poisson = 0.3
-[coating]
-young = 3.0
-poisson = 0.3
-thickness = 0.02
-[layer]
-compliance = 0.02
-relaxation_time = 1.0
-law = "sigmoid"
-delta = 0.5
-p0 = 0.005
-[loading]
-normal_load = 25e-6
-velocity = 1e-3
-[grid]
-cells = [64, 64]
-"#;
+    /// The sweep tests' base case (shared with the command line's) on a coated body.
+    const BASE: &str = concat!(
+        include_str!("../../tests/data/sweep_base.toml"),
+        "\n[coating]\nyoung = 3.0\npoisson = 0.3\nthickness = 0.02\n"
+    );
 
     fn vary(args: &[&str]) -> Result<Spec, SweepError> {
         let args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
