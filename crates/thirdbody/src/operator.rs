@@ -16,6 +16,13 @@ use crate::error::{Error, Result};
 use crate::layer::{cell_mean_pressure, ContactEdge};
 
 /// Something that applies the body's influence matrix.
+///
+/// Callers use [`Self::apply`] and [`Self::add_sparse`], which check their slices
+/// and return an [`Error::InvalidValue`] naming the one of the wrong length (or the
+/// cell outside the grid); an operator implements [`Self::apply_product`] and
+/// optionally [`Self::add_sparse_update`], whose [`Product`] and [`SparseUpdate`]
+/// only this crate makes, after those checks or, in the solvers' loops, from vectors
+/// of the operator's length by construction (checked in debug builds).
 pub trait InfluenceOperator {
     /// Number of cells.
     fn len(&self) -> usize;
@@ -28,14 +35,29 @@ pub trait InfluenceOperator {
     /// Whether `K` is symmetric (a kernel even in x and y); conjugate gradients need
     /// it, a body that creeps in steady sliding does not give it.
     fn is_symmetric(&self) -> bool;
-    /// `w = K p`, both of [`Self::len`] cells (the solvers' own vectors; another
-    /// length is a programming error and panics, as a slice copy does).
-    fn apply(&mut self, p: &[f64], w: &mut [f64]);
+    /// `w = K p`, both of [`Self::len`] cells; another length is an
+    /// [`Error::InvalidValue`] naming `p` or `w` and the allowed length.
+    fn apply(&mut self, p: &[f64], w: &mut [f64]) -> Result<()> {
+        let product = Product::checked(self.len(), p, w)?;
+        self.apply_product(product);
+        Ok(())
+    }
+    /// `w = K p` for a `p` and `w` of [`Self::len`] cells (what an operator
+    /// implements; callers use [`Self::apply`]).
+    fn apply_product(&mut self, product: Product<'_>);
     /// `w += K δ` for a `δ` that is non-zero on the `cells` only (`(index, value)`,
-    /// indices increasing), if the operator can do that for less than a product
-    /// `K p`; `false` (and `w` untouched) if not, and the caller applies `K` in full.
-    fn add_sparse(&mut self, cells: &[(usize, f64)], w: &mut [f64]) -> bool {
-        let _ = (cells, w);
+    /// indices increasing and below [`Self::len`], `w` of [`Self::len`] cells), if the
+    /// operator can do that for less than a product `K p`: `Ok(true)`; `Ok(false)`
+    /// (and `w` untouched) if not, and the caller applies `K` in full. Other lengths
+    /// or indices are an [`Error::InvalidValue`] naming the argument.
+    fn add_sparse(&mut self, cells: &[(usize, f64)], w: &mut [f64]) -> Result<bool> {
+        let update = SparseUpdate::checked(self.len(), cells, w)?;
+        Ok(self.add_sparse_update(update))
+    }
+    /// [`Self::add_sparse`] on checked arguments (what an operator implements, if
+    /// it can do better than refuse: `false`, `w` untouched).
+    fn add_sparse_update(&mut self, update: SparseUpdate<'_>) -> bool {
+        let _ = update;
         false
     }
     /// Products `K p` computed so far (for cost accounting; 0 if not counted).
@@ -43,6 +65,99 @@ pub trait InfluenceOperator {
         0
     }
 }
+
+/// The pressure `p` and the displacement `w` of one product `w = K p`, both of the
+/// operator's number of cells (checked when made).
+pub struct Product<'a> {
+    p: &'a [f64],
+    w: &'a mut [f64],
+}
+
+impl<'a> Product<'a> {
+    /// `p` and `w` if both have `cells` entries; else an error naming the first that
+    /// does not.
+    fn checked(cells: usize, p: &'a [f64], w: &'a mut [f64]) -> Result<Self> {
+        check_length("p (pressure) length", p.len(), cells)?;
+        check_length("w (displacement) length", w.len(), cells)?;
+        Ok(Product { p, w })
+    }
+
+    /// For the solvers' own vectors, of the operator's length by construction.
+    pub(crate) fn trusted(p: &'a [f64], w: &'a mut [f64]) -> Self {
+        debug_assert_eq!(p.len(), w.len());
+        Product { p, w }
+    }
+
+    /// The pressure and the displacement to write.
+    pub fn into_parts(self) -> (&'a [f64], &'a mut [f64]) {
+        (self.p, self.w)
+    }
+}
+
+/// The cells `(index, value)` of a sparse `δ` and the displacement `w` that
+/// `K δ` is added to: indices increasing and below the operator's number of cells,
+/// `w` of that length (checked when made).
+pub struct SparseUpdate<'a> {
+    cells: &'a [(usize, f64)],
+    w: &'a mut [f64],
+}
+
+impl<'a> SparseUpdate<'a> {
+    /// `cells` and `w` if they fit an operator of `n` cells; else an error naming
+    /// the argument.
+    fn checked(n: usize, cells: &'a [(usize, f64)], w: &'a mut [f64]) -> Result<Self> {
+        check_length("w (displacement) length", w.len(), n)?;
+        let mut last = None;
+        for &(k, _) in cells {
+            if k >= n || last.is_some_and(|l| k <= l) {
+                let allowed = format!(
+                    "increasing indices below the operator's {n} cells{}",
+                    last.map_or(String::new(), |l| format!(" (the one before is {l})"))
+                );
+                return Err(Error::invalid("cells index", k, &allowed));
+            }
+            last = Some(k);
+        }
+        Ok(SparseUpdate { cells, w })
+    }
+
+    /// For the solvers' own vectors (see [`Product::trusted`]).
+    pub(crate) fn trusted(cells: &'a [(usize, f64)], w: &'a mut [f64]) -> Self {
+        debug_assert!(cells.iter().all(|&(k, _)| k < w.len()));
+        SparseUpdate { cells, w }
+    }
+
+    /// The cells and the displacement to add to.
+    pub fn into_parts(self) -> (&'a [(usize, f64)], &'a mut [f64]) {
+        (self.cells, self.w)
+    }
+}
+
+fn check_length(name: &str, len: usize, cells: usize) -> Result<()> {
+    if len == cells {
+        Ok(())
+    } else {
+        let allowed = format!("the operator's {cells} cells");
+        Err(Error::invalid(name, len, &allowed))
+    }
+}
+
+/// The solvers' entries: [`InfluenceOperator::apply`] and
+/// [`InfluenceOperator::add_sparse`] without their checks, for vectors the solvers
+/// size from the operator themselves (a check per product would cost nothing
+/// measurable, but an error there could only be a bug of this crate).
+pub(crate) trait Unchecked: InfluenceOperator {
+    /// `w = K p`.
+    fn apply_unchecked(&mut self, p: &[f64], w: &mut [f64]) {
+        self.apply_product(Product::trusted(p, w));
+    }
+    /// `w += K δ` if cheaper than a product (see [`InfluenceOperator::add_sparse`]).
+    fn add_sparse_unchecked(&mut self, cells: &[(usize, f64)], w: &mut [f64]) -> bool {
+        self.add_sparse_update(SparseUpdate::trusted(cells, w))
+    }
+}
+
+impl<T: InfluenceOperator + ?Sized> Unchecked for T {}
 
 /// `K` applied by DC-FFT with a cached kernel spectrum.
 pub struct ConvolutionOperator {
@@ -140,7 +255,8 @@ impl InfluenceOperator for ConvolutionOperator {
     fn self_coefficient(&self) -> f64 {
         self.kernel.self_coefficient()
     }
-    fn apply(&mut self, p: &[f64], w: &mut [f64]) {
+    fn apply_product(&mut self, product: Product<'_>) {
+        let (p, w) = product.into_parts();
         self.products += 1;
         let (nx, ny) = (self.convolver.plan().nx(), self.convolver.plan().ny());
         if nx * ny >= TRIM_MIN_CELLS && self.kernel.is_even() {
@@ -161,7 +277,8 @@ impl InfluenceOperator for ConvolutionOperator {
             self.convolver.apply(full, p, w);
         }
     }
-    fn add_sparse(&mut self, cells: &[(usize, f64)], w: &mut [f64]) -> bool {
+    fn add_sparse_update(&mut self, update: SparseUpdate<'_>) -> bool {
+        let (cells, w) = update.into_parts();
         let Some(quadrant) = self.kernel.even_quadrant() else {
             return false;
         };
@@ -224,15 +341,17 @@ impl InfluenceOperator for DenseOperator {
         self.n
     }
     fn self_coefficient(&self) -> f64 {
-        self.values[0]
+        self.values.first().copied().unwrap_or(0.0)
     }
-    fn apply(&mut self, p: &[f64], w: &mut [f64]) {
+    fn apply_product(&mut self, product: Product<'_>) {
+        let (p, w) = product.into_parts();
         for (i, wi) in w.iter_mut().enumerate() {
             let row = &self.values[i * self.n..(i + 1) * self.n];
             *wi = row.iter().zip(p).map(|(a, b)| a * b).sum();
         }
     }
-    fn add_sparse(&mut self, cells: &[(usize, f64)], w: &mut [f64]) -> bool {
+    fn add_sparse_update(&mut self, update: SparseUpdate<'_>) -> bool {
+        let (cells, w) = update.into_parts();
         for (i, wi) in w.iter_mut().enumerate() {
             let row = &self.values[i * self.n..(i + 1) * self.n];
             *wi += cells.iter().map(|&(k, v)| row[k] * v).sum::<f64>();
@@ -272,12 +391,13 @@ impl InfluenceOperator for OnCellMeans<'_> {
     fn self_coefficient(&self) -> f64 {
         self.inner.self_coefficient()
     }
-    fn apply(&mut self, p: &[f64], w: &mut [f64]) {
+    fn apply_product(&mut self, product: Product<'_>) {
+        let (p, w) = product.into_parts();
         if self.entries.is_empty() {
-            return self.inner.apply(p, w);
+            return self.inner.apply_unchecked(p, w);
         }
         cell_mean_pressure(self.entries, p, &mut self.means);
-        self.inner.apply(&self.means, w);
+        self.inner.apply_unchecked(&self.means, w);
     }
     fn products(&self) -> usize {
         self.inner.products()
@@ -319,7 +439,7 @@ mod tests {
                 })
                 .collect();
             let (mut fast, mut full) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
-            op.apply(&field, &mut fast);
+            op.apply(&field, &mut fast).unwrap();
             reference.apply(&spectrum, &field, &mut full);
             let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (a, b) in fast.iter().zip(&full) {
@@ -360,6 +480,50 @@ mod tests {
     }
 
     #[test]
+    fn slices_of_another_length_are_errors_naming_the_argument() {
+        let plan = ConvolutionPlan::new(6, 5, Parallelism::Sequential);
+        let kernel = Arc::new(plan.even_kernel(vec![1.0; 30]).unwrap());
+        let mut convolution = ConvolutionOperator::new(plan.convolver(), kernel).unwrap();
+        let mut dense = DenseOperator::from_fn(30, |i, j| 1.0 / (1.0 + i.abs_diff(j) as f64));
+        let operators: [&mut dyn InfluenceOperator; 2] = [&mut convolution, &mut dense];
+        for op in operators {
+            let (p, mut w) = (vec![1.0; 30], vec![7.0; 30]);
+            for (p_len, w_len, named) in [
+                (29, 30, "p (pressure) length"),
+                (31, 30, "p (pressure) length"),
+                (30, 0, "w (displacement) length"),
+                (30, 64, "w (displacement) length"),
+            ] {
+                let (p_other, mut w_other) = (vec![1.0; p_len], vec![7.0; w_len]);
+                let e = op.apply(&p_other, &mut w_other).unwrap_err();
+                let message = e.to_string();
+                assert!(message.contains(named), "{message}");
+                assert!(message.contains("the operator's 30 cells"), "{message}");
+                assert!(w_other.iter().all(|&v| v == 7.0), "w left as it was");
+            }
+            let e = op.add_sparse(&[(3, 1.0)], &mut w[..29]).unwrap_err();
+            assert!(e.to_string().contains("w (displacement) length"), "{e}");
+            for cells in [
+                &[(30, 1.0)][..],
+                &[(4, 1.0), (4, 2.0)],
+                &[(5, 1.0), (2, 1.0)],
+            ] {
+                let e = op.add_sparse(cells, &mut w).unwrap_err();
+                assert!(e.to_string().contains("cells index"), "{e}");
+            }
+            assert!(w.iter().all(|&v| v == 7.0), "w left as it was");
+            // The right lengths: the product.
+            op.apply(&p, &mut w).unwrap();
+            assert!(w.iter().all(|v| v.is_finite() && *v != 7.0));
+        }
+        // An empty dense operator has no diagonal to give, and does not panic.
+        assert_eq!(
+            DenseOperator::from_fn(0, |_, _| 1.0).self_coefficient(),
+            0.0
+        );
+    }
+
+    #[test]
     fn direct_sums_are_taken_for_a_few_cells_and_refused_for_many() {
         let (nx, ny) = (40, 30);
         let kernel = |di: i64, dj: i64| 1.0 / (0.5 + ((di * di + 2 * dj * dj) as f64).sqrt());
@@ -375,10 +539,10 @@ mod tests {
             field[k] = v;
         }
         let mut product = vec![0.0; nx * ny];
-        op.apply(&field, &mut product);
+        op.apply(&field, &mut product).unwrap();
         let start: Vec<f64> = (0..nx * ny).map(|k| (k % 3) as f64).collect();
         let mut w = start.clone();
-        assert!(op.add_sparse(&cells, &mut w));
+        assert!(op.add_sparse(&cells, &mut w).unwrap());
         for k in 0..nx * ny {
             assert!((w[k] - start[k] - product[k]).abs() < 1e-13, "cell {k}");
         }
@@ -386,7 +550,7 @@ mod tests {
         // 1.25 x 4800 x log2 4800), and `w` is left as it was.
         let all: Vec<(usize, f64)> = (0..nx * ny).map(|k| (k, 1.0)).collect();
         let mut w = start.clone();
-        assert!(!op.add_sparse(&all, &mut w));
+        assert!(!op.add_sparse(&all, &mut w).unwrap());
         assert_eq!(w, start);
     }
 }

@@ -354,7 +354,7 @@ fn coated_body_goes_through_the_dc_fft_operator() {
     let mut fast = vec![0.0; nx * ny];
     let mut operator =
         ConvolutionOperator::new(plan.convolver(), std::sync::Arc::new(spectrum)).unwrap();
-    operator.apply(&field, &mut fast);
+    operator.apply(&field, &mut fast).unwrap();
     let mut slow = vec![0.0; nx * ny];
     let dense =
         |di: i64, dj: i64| kernel[dj.unsigned_abs() as usize * nx + di.unsigned_abs() as usize];

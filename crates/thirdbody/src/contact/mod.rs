@@ -24,7 +24,7 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::kernel_cache::KernelCache;
 use crate::layer::{load_weights, ContactEdge, NoLayer};
-use crate::operator::{InfluenceOperator, OnCellMeans};
+use crate::operator::{OnCellMeans, Unchecked};
 use crate::passes::{add_in_order, Passes};
 use crate::problem::ContactProblem;
 use crate::report::MAX_CONTACT_FRACTION;
@@ -666,7 +666,8 @@ fn gap_at(problem: &mut ContactProblem, p: &[f64], approach: f64) -> Vec<f64> {
     let n = p.len();
     let mut gap = vec![0.0; n];
     let layer = problem.layer.as_deref().unwrap_or(&NoLayer);
-    OnCellMeans::new(problem.influence.as_mut(), layer.contact_edges()).apply(p, &mut gap);
+    OnCellMeans::new(problem.influence.as_mut(), layer.contact_edges())
+        .apply_unchecked(p, &mut gap);
     let mut wl = vec![0.0; n];
     layer.displacement(p, &mut wl);
     gap.iter_mut().zip(&wl).for_each(|(g, w)| *g += w);
@@ -700,7 +701,7 @@ fn finish(
     let scale = load / (sum * grid.cell_area());
     p.iter_mut().for_each(|v| *v *= scale);
     let mut wb = vec![0.0; n];
-    OnCellMeans::new(problem.influence.as_mut(), &entries).apply(&p, &mut wb);
+    OnCellMeans::new(problem.influence.as_mut(), &entries).apply_unchecked(&p, &mut wb);
     let (wl, compliance, layer_dissipated_force) = match &problem.layer {
         Some(l) => {
             let mut wl = vec![0.0; n];

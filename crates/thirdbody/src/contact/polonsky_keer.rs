@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use super::{Monitor, SolveReport};
 use crate::contact::{Progress, SolverParams};
 use crate::error::Result;
-use crate::operator::InfluenceOperator;
+use crate::operator::{InfluenceOperator, Unchecked};
 use crate::passes::{add_in_order, lane_sum, lane_sum_max, Passes, CHUNK};
 use crate::problem::ContactProblem;
 
@@ -55,7 +55,7 @@ pub(crate) fn polonsky_keer(
     let mut t = vec![0.0; n];
     let mut r = vec![0.0; n];
     let apply = |op: &mut dyn InfluenceOperator, x: &[f64], out: &mut [f64]| {
-        op.apply(x, out);
+        op.apply_unchecked(x, out);
         if winkler != 0.0 {
             out.par_chunks_mut(CHUNK)
                 .zip(x.par_chunks(CHUNK))
@@ -239,7 +239,7 @@ pub(crate) fn polonsky_keer(
         // `A p` follows the step as `A p - tau r + A delta`, with `A delta` added
         // directly when the operator finds that cheaper than a product; else (and
         // every REFRESH_EVERY iterations) it is recomputed.
-        let corrected = !changed.is_empty() && op.add_sparse(&changed, &mut u);
+        let corrected = !changed.is_empty() && op.add_sparse_unchecked(&changed, &mut u);
         if corrected && winkler != 0.0 {
             for &(k, delta) in &changed {
                 u[k] += winkler * delta;

@@ -1,6 +1,6 @@
 //! Conjugate gradients keep `A p` up to date through a step that the projection
 //! changed on a few cells by adding those cells' part directly
-//! (`InfluenceOperator::add_sparse`) instead of recomputing the product. The
+//! (`InfluenceOperator::add_sparse_update`) instead of recomputing the product. The
 //! solution must be the one the recomputing solver finds, and the direct sums must
 //! actually have been used (second method: the same operator with them refused).
 
@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use cases::*;
-use thirdbody::operator::{ConvolutionOperator, InfluenceOperator};
+use thirdbody::operator::{ConvolutionOperator, InfluenceOperator, Product, SparseUpdate};
 use thirdbody::*;
 
 /// A contact operator that counts its direct sums (in a counter the test keeps:
@@ -32,11 +32,11 @@ impl InfluenceOperator for Watched {
     fn is_symmetric(&self) -> bool {
         self.inner.is_symmetric()
     }
-    fn apply(&mut self, p: &[f64], w: &mut [f64]) {
-        self.inner.apply(p, w)
+    fn apply_product(&mut self, product: Product<'_>) {
+        self.inner.apply_product(product)
     }
-    fn add_sparse(&mut self, cells: &[(usize, f64)], w: &mut [f64]) -> bool {
-        let added = self.allow_sparse && self.inner.add_sparse(cells, w);
+    fn add_sparse_update(&mut self, update: SparseUpdate<'_>) -> bool {
+        let added = self.allow_sparse && self.inner.add_sparse_update(update);
         self.sparse_sums
             .fetch_add(usize::from(added), Ordering::Relaxed);
         added
