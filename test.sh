@@ -2,7 +2,9 @@
 # Every test: the Rust workspace, then the Python package built into a fresh virtual
 # environment under target/ (maturin, pytest, numpy and the package's `test` extra:
 # pandas, xarray, scipy, matplotlib, dask[distributed], pytest-timeout, all from the
-# package index).
+# package index). The Python package is its own cargo workspace and compiles its
+# crates again: its feature resolution differs from the tests' (docs/performance.md,
+# test suite time).
 set -euo pipefail
 cd "$(dirname "$0")"
 cargo test --release --workspace
@@ -11,5 +13,7 @@ rm -rf "$venv"
 python3 -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --upgrade pip
 "$venv/bin/python" -m pip install --quiet maturin pytest numpy
-"$venv/bin/python" -m pip install --quiet "./crates/thirdbody-py[test]"
-THIRDBODY_BIN="$PWD/target/release/thirdbody" "$venv/bin/python" -m pytest -q --timeout 600 crates/thirdbody-py/tests
+# No isolated build environment: the maturin just installed builds the package.
+"$venv/bin/python" -m pip install --quiet --no-build-isolation "./crates/thirdbody-py[test]"
+THIRDBODY_BIN="$PWD/target/release/thirdbody" "$venv/bin/python" -m pytest -q --timeout 600 \
+    --durations=10 crates/thirdbody-py/tests
