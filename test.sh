@@ -13,7 +13,6 @@ rm -rf "$venv"
 python3 -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --upgrade pip
 "$venv/bin/python" -m pip install --quiet maturin pytest numpy
-# No isolated build environment: the maturin just installed builds the package.
-"$venv/bin/python" -m pip install --quiet --no-build-isolation "./crates/thirdbody-py[test]"
+"$venv/bin/python" -m pip install --quiet "./crates/thirdbody-py[test]"
 THIRDBODY_BIN="$PWD/target/release/thirdbody" "$venv/bin/python" -m pytest -q --timeout 600 \
     --durations=10 crates/thirdbody-py/tests
