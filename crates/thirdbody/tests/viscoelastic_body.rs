@@ -63,6 +63,18 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
+/// Two solutions with the same pressure (1e-12 of `b`'s peak) and approach (1e-12).
+fn assert_same_contact(a: &Solution, b: &Solution) {
+    let peak = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+    let diff = a
+        .pressure
+        .iter()
+        .zip(&b.pressure)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(diff < 1e-12 * peak, "{diff}");
+    assert!(rel(a.approach, b.approach) < 1e-12);
+}
+
 #[test]
 fn the_speed_limits_are_hertz_with_the_glassy_and_the_relaxed_modulus() {
     // E0 = 1, Eg = 10, nu = 0: plane-strain moduli 1 and 10. Creep lengths
@@ -209,14 +221,7 @@ fn one_prony_branch_is_the_zener_preset_and_no_creep_is_the_elastic_body() {
     let velocity = 0.3 * A0 / tau;
     let a = solve(&sliding(zener_body, velocity, 64, Some(2.0)), &P).unwrap();
     let b = solve(&sliding(prony, velocity, 64, Some(2.0)), &P).unwrap();
-    let peak = a.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
-    let diff = a
-        .pressure
-        .iter()
-        .zip(&b.pressure)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    assert!(diff < 1e-12 * peak, "{diff}");
-    assert!(rel(a.approach, b.approach) < 1e-12);
+    assert_same_contact(&a, &b);
 
     // Branches without compliance: the elastic body of the glassy compliance, on
     // the same solver (the kernel is even, so conjugate gradients).
@@ -235,14 +240,7 @@ fn one_prony_branch_is_the_zener_preset_and_no_creep_is_the_elastic_body() {
     let a = solve(&sliding(still, velocity, 64, Some(1.0)), &P).unwrap();
     let b = solve(&sliding(elastic, velocity, 64, Some(1.0)), &P).unwrap();
     assert_eq!(a.info.method, Method::PolonskyKeer);
-    let peak = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
-    let diff = a
-        .pressure
-        .iter()
-        .zip(&b.pressure)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    assert!(diff < 1e-12 * peak, "{diff}");
-    assert!(rel(a.approach, b.approach) < 1e-12);
+    assert_same_contact(&a, &b);
 }
 
 #[test]
