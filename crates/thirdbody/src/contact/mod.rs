@@ -486,47 +486,34 @@ fn solve_on_windows(
     })
 }
 
-/// Cells across the coarse grid of [`scout`], at least.
+/// Cells across the coarse grid of [`scout`] on large grids; smaller grids are
+/// scouted at half their cells.
 const SCOUT_CELLS: usize = 48;
+/// Grids with fewer cells across are not scouted (their own solve is as cheap).
+const MIN_SCOUTED_CELLS: usize = 32;
 
-/// The window of a case's cells fitted to its contact as a solve on a grid
-/// [`SCOUT_CELLS`] cells across (over `first`, enlarged while its contact reaches
-/// the edge) locates it, with that solve's window and pressure; `None` when the
-/// grid is not at least twice as fine as the coarse one or the coarse solve does
-/// not give a contact (the caller then starts from `first`).
+/// The window of a case's cells fitted to its contact as located by a solve of the
+/// same case on a coarser grid (`SCOUT_CELLS` across, or half the cells, itself
+/// scouted the same way, with the automatic window), with that solve's window and
+/// pressure; `None` when the grid is too small to scout or the coarse solve fails
+/// (the caller then starts from the estimated window).
 fn scout(
     case: &Case,
     first: &Grid,
     params: &SolverParams,
     kernels: &mut KernelCache,
 ) -> Option<(Grid, (Grid, Vec<f64>))> {
-    let factor = (first.nx.min(first.ny) / SCOUT_CELLS).max(1);
-    if factor < 2 {
+    let across = first.nx.min(first.ny);
+    if across < MIN_SCOUTED_CELLS {
         return None;
     }
-    let (nx, ny) = (first.nx / factor, first.ny / factor);
-    let centre = [
-        first.x0 + 0.5 * first.nx as f64 * first.cell,
-        first.y0 + 0.5 * first.ny as f64 * first.cell,
-    ];
-    let mut coarse = Grid::centred(nx, ny, first.cell * factor as f64, centre).ok()?;
-    let mut warm: Option<(Grid, Vec<f64>)> = None;
-    for _ in 0..params.max_windows.max(1) {
-        let mut problem = case.assemble(&coarse, kernels, params.parallelism).ok()?;
-        let solution = solve_problem(&mut problem, warm.as_ref(), params, &mut |_| {
-            ControlFlow::Continue(())
-        })
-        .ok()?;
-        let touches = coarse.touches_edge(&solution.pressure);
-        if !touches {
-            let window = window::fit_to_contact(first.nx, first.ny, &coarse, &solution.pressure)?;
-            return Some((window, (coarse, solution.pressure)));
-        }
-        let next = window::next_window(&coarse, &solution.pressure, true)?;
-        warm = Some((coarse, solution.pressure));
-        coarse = next;
-    }
-    None
+    let factor = (across / SCOUT_CELLS).max(2);
+    let mut coarse = case.clone();
+    coarse.grid.cells = [first.nx / factor, first.ny / factor];
+    let solution =
+        solve_on_windows(&coarse, params, kernels, &mut |_| ControlFlow::Continue(())).ok()?;
+    let window = window::fit_to_contact(first.nx, first.ny, &solution.grid, &solution.pressure)?;
+    Some((window, (solution.grid, solution.pressure)))
 }
 
 /// Solves one assembled problem on its own window (no window adaptation), from the
