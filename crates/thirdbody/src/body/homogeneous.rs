@@ -36,6 +36,20 @@ impl BodyModel for HomogeneousHalfSpace {
         })
     }
 
+    fn line_kernel(
+        &self,
+        cell: f64,
+        nx: usize,
+        _velocity: f64,
+        reference: f64,
+    ) -> Result<SurfaceKernel> {
+        let compliance = 1.0 / self.material.plane_strain_modulus();
+        Ok(SurfaceKernel::Even {
+            quadrant: super::line::homogeneous_line_kernel(compliance, cell, nx, reference),
+            nx,
+        })
+    }
+
     fn kernel_depends_on_velocity(&self) -> bool {
         false
     }

@@ -12,6 +12,7 @@
 pub mod homogeneous;
 pub mod hysteresis;
 pub mod layered;
+pub mod line;
 pub(crate) mod quadrature;
 pub mod solid;
 pub mod stack;
@@ -99,6 +100,20 @@ pub trait BodyModel: std::fmt::Debug + Send + Sync {
         nx: usize,
         ny: usize,
         velocity: f64,
+    ) -> Result<SurfaceKernel>;
+    /// The plane-strain (line contact) surface kernel on `nx` cells of width `cell`
+    /// along x, each loaded uniformly along y, when the slider moves at `velocity`
+    /// in +x: `Even { quadrant, nx }` holds `nx` values (offsets `0..nx`),
+    /// `EvenInY { half, nx }` holds `2 nx - 1` (offsets `-(nx - 1)..nx`). The
+    /// displacement is measured against the surface at distance `reference` from
+    /// the load for the body's long-wave (relaxed) compliance ([`line`]); a body on
+    /// a rigid base has no long-wave compliance and is measured from the base.
+    fn line_kernel(
+        &self,
+        cell: f64,
+        nx: usize,
+        velocity: f64,
+        reference: f64,
     ) -> Result<SurfaceKernel>;
     /// Whether the surface kernel depends on the sliding speed (a cache of kernels
     /// keys on the speed then).

@@ -124,6 +124,20 @@ impl BodyModel for StackBody {
         })
     }
 
+    fn line_kernel(
+        &self,
+        _cell: f64,
+        _nx: usize,
+        _velocity: f64,
+        _reference: f64,
+    ) -> Result<SurfaceKernel> {
+        Err(crate::error::Error::invalid(
+            "slider.shape",
+            "a line contact",
+            "a point contact on a layered body (its line kernel is not built yet)",
+        ))
+    }
+
     fn kernel_depends_on_velocity(&self) -> bool {
         false
     }
