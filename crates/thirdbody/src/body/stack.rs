@@ -130,7 +130,7 @@ impl BodyModel for StackBody {
         _nx: usize,
         _velocity: f64,
         _reference: f64,
-    ) -> Result<SurfaceKernel> {
+    ) -> Result<super::SurfaceKernel> {
         Err(crate::error::Error::invalid(
             "slider.shape",
             "a line contact",
