@@ -50,6 +50,7 @@ fn fig7_case(thickness: f64) -> Case {
         loading: Loading {
             normal_load: 5e-6,
             velocity: Some(1e-3),
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [256, 256],

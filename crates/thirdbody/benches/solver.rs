@@ -25,6 +25,7 @@ fn sphere_on(body: Body, velocity: Option<f64>) -> Case {
         loading: Loading {
             normal_load: 1.6667e-4,
             velocity,
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [256, 256],

@@ -85,6 +85,7 @@ fn case(delta: f64, integration: Integration, cells: usize) -> Case {
         loading: Loading {
             normal_load: 5e-6,
             velocity: Some(1e-3),
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [cells, cells],

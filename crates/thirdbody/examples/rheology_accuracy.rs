@@ -26,6 +26,7 @@ fn case(rheology: Rheology, young: f64, velocity: f64, cells: usize) -> Case {
         loading: Loading {
             normal_load: 5e-6,
             velocity: Some(velocity),
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [cells, cells],

@@ -82,6 +82,7 @@ fn main() {
                             loading: Loading {
                                 normal_load: 5e-6,
                                 velocity: Some(vtau),
+                                reference_distance: None,
                             },
                             grid: GridSpec {
                                 cells: [64, 64],

@@ -137,19 +137,39 @@ impl Body {
 }
 
 /// Normal load and sliding velocity.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Clone, Copy, PartialEq)]
 pub struct Loading {
     /// Normal force Q on the slider, > 0.
     pub normal_load: f64,
     /// Sliding velocity V, > 0; may be infinite (no time to creep). Needed only
     /// with a layer.
     pub velocity: Option<f64>,
+    /// A line contact's datum: the surface displacement and the approach are
+    /// measured against the surface at this distance from the load (in plane strain
+    /// they are defined only against a datum, [`crate::body::line`]); default the
+    /// slider's radius. Not allowed on a point contact.
+    pub reference_distance: Option<f64>,
+}
+
+/// Written as derived, leaving out a datum that is not set: a case's hash
+/// ([`crate::provenance::case_hash`]) is its debug form, and a point contact's must
+/// not change with a key it cannot have.
+impl std::fmt::Debug for Loading {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut s = f.debug_struct("Loading");
+        s.field("normal_load", &self.normal_load)
+            .field("velocity", &self.velocity);
+        if let Some(d) = &self.reference_distance {
+            s.field("reference_distance", d);
+        }
+        s.finish()
+    }
 }
 
 /// How the window is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GridSpec {
-    /// Cells along x and y.
+    /// Cells along x and y (a line contact: `[nx, 1]`).
     pub cells: [usize; 2],
     /// Fixed window half widths along x and y (centred on the origin unless
     /// `centre` is given); `None` for an automatic window that is enlarged until
@@ -225,6 +245,16 @@ impl Case {
                 });
             }
         }
+        if self.slider.is_line() {
+            return self.validate_line_grid();
+        }
+        if let Some(d) = self.loading.reference_distance {
+            return Err(Error::invalid(
+                "loading.reference_distance",
+                d,
+                "no value on a point contact (it is a line contact's datum)",
+            ));
+        }
         for (k, &n) in self.grid.cells.iter().enumerate() {
             if n < crate::grid::MIN_CELLS {
                 return Err(Error::invalid(
@@ -270,6 +300,65 @@ impl Case {
             }
         }
         Ok(())
+    }
+
+    /// The grid keys of a line contact: `cells = [nx, 1]`, a half width and centre
+    /// along x only (`[w, 0]`, `[c, 0]`), a positive reference distance.
+    fn validate_line_grid(&self) -> Result<()> {
+        let [nx, ny] = self.grid.cells;
+        if ny != 1 {
+            return Err(Error::invalid(
+                "grid.cells",
+                format!("[{nx}, {ny}]"),
+                "one number of cells along x for a line contact (slider.shape = \"cylinder\"): \
+                 cells = N",
+            ));
+        }
+        if nx < crate::grid::MIN_CELLS || nx > 1 << 22 {
+            return Err(Error::invalid(
+                "grid.cells",
+                nx,
+                "8 to 4194304 cells along x for a line contact",
+            ));
+        }
+        if let Some(d) = self.loading.reference_distance {
+            require_positive("loading.reference_distance", d)?;
+        }
+        if let Some(w) = self.grid.half_width {
+            require_positive("grid.half_width", w[0])?;
+            if w[1] != 0.0 {
+                return Err(Error::invalid(
+                    "grid.half_width",
+                    format!("[{}, {}]", w[0], w[1]),
+                    "one half width along x for a line contact: half_width = w",
+                ));
+            }
+        }
+        if let Some(c) = self.grid.centre {
+            if !c[0].is_finite() || c[1] != 0.0 {
+                return Err(Error::invalid(
+                    "grid.centre",
+                    format!("[{}, {}]", c[0], c[1]),
+                    "one finite x for a line contact: centre = x",
+                ));
+            }
+            if self.grid.half_width.is_none() {
+                return Err(Error::MissingField {
+                    field: "grid.half_width".into(),
+                    why: "grid.centre fixes the window, so its half width is needed too".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The contact's geometry (point, or line with its datum), from the slider.
+    pub fn geometry(&self) -> crate::grid::Geometry {
+        let datum = self
+            .loading
+            .reference_distance
+            .unwrap_or_else(|| self.slider.equivalent_radius());
+        self.slider.geometry(datum)
     }
 
     /// An upper estimate of the memory a solve of this case takes at its peak, in

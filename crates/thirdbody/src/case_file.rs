@@ -71,6 +71,7 @@ enum RawShape {
     Sphere,
     Ellipsoid,
     HeightMap,
+    Cylinder,
 }
 
 #[derive(Debug, Deserialize)]
@@ -485,33 +486,60 @@ impl<'de> Visitor<'de> for RawLayerVisitor {
 struct RawLoading {
     normal_load: Option<f64>,
     velocity: Option<f64>,
+    reference_distance: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawGrid {
-    #[serde(default, deserialize_with = "exactly_two")]
-    cells: Option<[usize; 2]>,
-    #[serde(default, deserialize_with = "exactly_two")]
-    half_width: Option<[f64; 2]>,
-    #[serde(default, deserialize_with = "exactly_two")]
-    centre: Option<[f64; 2]>,
+    cells: Option<Axes<usize>>,
+    half_width: Option<Axes<f64>>,
+    centre: Option<Axes<f64>>,
 }
 
-/// A pair `[x, y]` written as an array of exactly two numbers (a fixed-size array
-/// alone would silently drop a third element: `cells = [128, 128, 128]`).
-fn exactly_two<'de, D, T>(d: D) -> std::result::Result<Option<[T; 2]>, D::Error>
-where
-    D: serde::Deserializer<'de>,
-    T: Deserialize<'de> + Copy,
-{
-    let values: Vec<T> = Vec::deserialize(d)?;
-    match values[..] {
-        [x, y] => Ok(Some([x, y])),
-        _ => Err(serde::de::Error::custom(format!(
-            "{} values given: give exactly two, [x, y]",
-            values.len()
-        ))),
+/// A grid key as written: one number (a line contact's x), or an array (`[x, y]`
+/// for a point contact, `[x]` for a line contact).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum Axes<T> {
+    One(T),
+    Many(Vec<T>),
+}
+
+impl<T: Copy + std::fmt::Display> Axes<T> {
+    /// The value of `key` for a point contact (`[x, y]`) or a line contact (`x` or
+    /// `[x]`, returned as `[x, fill]`); any other form is an error naming the key.
+    fn for_geometry(&self, key: &str, line: bool, fill: T) -> Result<[T; 2]> {
+        match (self, line) {
+            (Axes::Many(v), false) if v.len() == 2 => Ok([v[0], v[1]]),
+            (Axes::One(x), true) => Ok([*x, fill]),
+            (Axes::Many(v), true) if v.len() == 1 => Ok([v[0], fill]),
+            (written, true) => Err(Error::invalid(
+                key,
+                written.describe(),
+                "one value along x for a line contact (slider.shape = \"cylinder\"), e.g. \
+                 cells = 1024",
+            )),
+            (written, false) => Err(Error::invalid(
+                key,
+                written.describe(),
+                "exactly two values [x, y] for a point contact (one value is a line \
+                 contact's, slider.shape = \"cylinder\")",
+            )),
+        }
+    }
+
+    fn describe(&self) -> String {
+        match self {
+            Axes::One(x) => x.to_string(),
+            Axes::Many(v) => format!(
+                "[{}]",
+                v.iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        }
     }
 }
 
@@ -567,22 +595,42 @@ pub fn parse_case_file(
     let loading = section(raw.loading, "loading", "normal_load (> 0)")?;
     let grid = section(raw.grid, "grid", "cells = [nx, ny], each >= 8")?;
     let layer = raw.layer.map(layer).transpose()?;
+    let line = matches!(slider.shape, Some(RawShape::Cylinder));
+    if !line {
+        unused(
+            loading.reference_distance.is_some(),
+            "loading.reference_distance",
+            "it is a line contact's datum (slider.shape = \"cylinder\")",
+        )?;
+    }
     let loading = Loading {
         normal_load: need(
             loading.normal_load,
             "loading.normal_load",
-            "the normal load Q (> 0) is always needed",
+            "the normal load Q (> 0) is always needed (per unit length for a line contact)",
         )?,
         velocity: loading.velocity,
+        reference_distance: loading.reference_distance,
     };
+    let cells = need(
+        grid.cells,
+        "grid.cells",
+        if line {
+            "give cells = N with N >= 8 (a line contact)"
+        } else {
+            "give cells = [nx, ny] with nx, ny >= 8"
+        },
+    )?;
     let grid = GridSpec {
-        cells: need(
-            grid.cells,
-            "grid.cells",
-            "give cells = [nx, ny] with nx, ny >= 8",
-        )?,
-        half_width: grid.half_width,
-        centre: grid.centre,
+        cells: cells.for_geometry("grid.cells", line, 1)?,
+        half_width: grid
+            .half_width
+            .map(|w| w.for_geometry("grid.half_width", line, 0.0))
+            .transpose()?,
+        centre: grid
+            .centre
+            .map(|c| c.for_geometry("grid.centre", line, 0.0))
+            .transpose()?,
     };
     let solver = solver_params(raw.solver)?;
     let units = match raw.units {
@@ -806,9 +854,23 @@ fn slider_shape(
     let shape = need(
         s.shape,
         "slider.shape",
-        "choose \"sphere\", \"ellipsoid\" or \"height_map\"",
+        "choose \"sphere\", \"ellipsoid\", \"height_map\" or \"cylinder\"",
     )?;
     match shape {
+        RawShape::Cylinder => {
+            let why = "a cylinder has only a radius";
+            unused(s.radius_x.is_some(), "slider.radius_x", why)?;
+            unused(s.radius_y.is_some(), "slider.radius_y", why)?;
+            unused(s.file.is_some(), "slider.file", why)?;
+            unused(s.cell_size.is_some(), "slider.cell_size", why)?;
+            Ok(Slider::Cylinder {
+                radius: need(
+                    s.radius,
+                    "slider.radius",
+                    "a cylinder needs its radius (> 0)",
+                )?,
+            })
+        }
         RawShape::Sphere => {
             let why = "a sphere has only a radius";
             unused(s.radius_x.is_some(), "slider.radius_x", why)?;

@@ -96,6 +96,7 @@ fn paper_fig3_parses_into_the_hand_built_case() {
         loading: Loading {
             normal_load: 5e-6,
             velocity: Some(1e-3),
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [128, 128],
@@ -303,15 +304,80 @@ fn wrong_type_and_bad_syntax_are_one_line_parse_errors() {
     assert!(matches!(e, Error::Parse(_)), "{e:?}");
     error_naming(&with(FIG3, "law", "law = \"cubic\""), &["cubic", "sigmoid"]);
     error_naming(&with(FIG3, "poisson", "poisson = "), &["line 8"]);
-    error_naming(&with(FIG3, "cells", "cells = [128]"), &["line 23"]);
+    error_naming(
+        &with(FIG3, "cells", "cells = [128]"),
+        &[
+            "grid.cells = [128]",
+            "exactly two values [x, y] for a point contact",
+        ],
+    );
+    error_naming(
+        &with(FIG3, "cells", "cells = 128"),
+        &["grid.cells = 128", "exactly two values", "cylinder"],
+    );
     // A third element is not dropped silently.
     error_naming(
         &with(FIG3, "cells", "cells = [128, 128, 128]"),
-        &["grid.cells", "3 values given", "exactly two"],
+        &["grid.cells = [128, 128, 128]", "exactly two"],
     );
     error_naming(
         &add(FIG3, "grid", "half_width = [0.06, 0.06, 5.0]"),
-        &["grid.half_width", "3 values given"],
+        &["grid.half_width = [0.06, 0.06, 5]", "exactly two"],
+    );
+    error_naming(&with(FIG3, "cells", "cells = \"many\""), &["line 23"]);
+}
+
+/// A line contact (a cylinder) takes one value per grid key, a point contact's
+/// pairs are refused with the key named, and its datum is a line contact's only.
+#[test]
+fn a_line_contact_has_one_axis() {
+    let line = "[slider]\nshape = \"cylinder\"\nradius = 2.0\n[substrate]\nyoung = 1.0\n\
+                poisson = 0.3\n[loading]\nnormal_load = 1e-3\n[grid]\ncells = 256\n";
+    let case = parse(line).unwrap().case;
+    assert_eq!(case.grid.cells, [256, 1]);
+    assert_eq!(case.slider, Slider::Cylinder { radius: 2.0 });
+    assert_eq!(case.geometry(), crate::grid::Geometry::Line { datum: 2.0 });
+    let fixed = parse(&format!("{line}half_width = 0.1\ncentre = [0.02]\n"))
+        .unwrap()
+        .case;
+    assert_eq!(fixed.grid.half_width, Some([0.1, 0.0]));
+    assert_eq!(fixed.grid.centre, Some([0.02, 0.0]));
+    let datum = add(line, "loading", "reference_distance = 7.5");
+    let with_datum = parse(&datum).unwrap().case;
+    assert_eq!(
+        with_datum.geometry(),
+        crate::grid::Geometry::Line { datum: 7.5 }
+    );
+    // The datum is part of the case's identity; an unset one leaves the debug form
+    // (and the hash of every point contact) as it was.
+    assert_ne!(
+        crate::provenance::case_hash(&with_datum),
+        crate::provenance::case_hash(&case)
+    );
+    assert!(!format!("{:?}", case.loading).contains("reference_distance"));
+    error_naming(
+        &with(line, "cells", "cells = [256, 256]"),
+        &[
+            "grid.cells = [256, 256]",
+            "one value along x for a line contact",
+        ],
+    );
+    error_naming(
+        &format!("{line}half_width = [0.1, 0.1]\n"),
+        &["grid.half_width = [0.1, 0.1]", "one value along x"],
+    );
+    error_naming(&with(line, "cells", "cells = 4"), &["grid.cells", "8 to"]);
+    error_naming(
+        &add(line, "loading", "reference_distance = -1.0"),
+        &["loading.reference_distance", "> 0"],
+    );
+    error_naming(
+        &add(FIG3, "loading", "reference_distance = 1.0"),
+        &["loading.reference_distance", "line contact's datum"],
+    );
+    error_naming(
+        &add(line, "slider", "radius_x = 1.0"),
+        &["slider.radius_x", "only a radius"],
     );
 }
 

@@ -15,7 +15,7 @@ use crate::body::surface_kernel;
 use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum, Parallelism};
 use crate::error::Result;
-use crate::grid::Grid;
+use crate::grid::{Geometry, Grid};
 
 /// Spectra kept by default: the windows an automatic solve tries for a few bodies.
 const DEFAULT_CAPACITY: usize = 8;
@@ -32,6 +32,7 @@ struct SpectrumKey {
     body: Body,
     cells: [usize; 2],
     cell_bits: u64,
+    geometry: Geometry,
     velocity_bits: Option<u64>,
 }
 
@@ -132,6 +133,7 @@ impl KernelCache {
             body: body.clone(),
             cells: [grid.nx, grid.ny],
             cell_bits: grid.cell.to_bits(),
+            geometry: grid.geometry(),
             velocity_bits: body
                 .model()
                 .kernel_depends_on_velocity()

@@ -64,7 +64,7 @@ pub use case::{Body, Case, Elastic, GridSpec, Loading, Units};
 pub use contact::{solve, solve_observed, solve_problem, solve_with, Progress, SolverParams};
 pub use convolution::Parallelism;
 pub use error::{Error, Result};
-pub use grid::Grid;
+pub use grid::{Geometry, Grid};
 pub use kernel_cache::KernelCache;
 pub use layer::{
     ComplianceLaw, CreepForm, Integration, Layer, RelaxationBranch, RetardationBranch, Rheology,

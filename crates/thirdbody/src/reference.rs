@@ -102,7 +102,7 @@ fn solve_dense_with(
     let slope = problem.slope.clone();
     let layer = response.map(|response| DenseLayer { response });
     let load = problem.load;
-    let area = grid.cell_area();
+    let area = grid.cell_measure();
 
     // Start: every cell where the undeformed slider is below the mean height.
     let fmean = f.iter().sum::<f64>() / n as f64;

@@ -6,6 +6,7 @@
 
 use crate::convolution::Parallelism;
 use crate::error::{require_positive, Error, Result};
+use crate::grid::Geometry;
 use crate::passes::Passes;
 
 /// A rigid smooth slider.
@@ -25,6 +26,12 @@ pub enum Slider {
     },
     /// Heights sampled on a grid of square cells, interpolated bilinearly.
     HeightMap(HeightMap),
+    /// A cylinder of radius R with its axis along y, a line contact (plane
+    /// strain): `f = x^2 / (2 R)`, loads per unit length.
+    Cylinder {
+        /// Radius R.
+        radius: f64,
+    },
 }
 
 /// Heights of the slider surface on a regular grid centred on the origin,
@@ -126,14 +133,30 @@ impl Slider {
                 require_positive("slider.radius_y", *radius_y)
             }
             Slider::HeightMap(m) => m.validate(),
+            Slider::Cylinder { radius } => require_positive("slider.radius", *radius),
         }
+    }
+
+    /// The contact's geometry: a line contact (plane strain) for a slider uniform
+    /// along y, a point contact otherwise. `datum` is a line contact's
+    /// [`Geometry::Line`] datum.
+    pub fn geometry(&self, datum: f64) -> Geometry {
+        match self {
+            Slider::Cylinder { .. } => Geometry::Line { datum },
+            _ => Geometry::Point,
+        }
+    }
+
+    /// Whether the slider makes a line contact.
+    pub fn is_line(&self) -> bool {
+        matches!(self.geometry(1.0), Geometry::Line { .. })
     }
 
     /// Effective radius used by the automatic window and Hertz estimates:
     /// `sqrt(Rx Ry)` for an ellipsoid, the curvature at the lowest point for a map.
     pub fn equivalent_radius(&self) -> f64 {
         match self {
-            Slider::Sphere { radius } => *radius,
+            Slider::Sphere { radius } | Slider::Cylinder { radius } => *radius,
             Slider::Ellipsoid { radius_x, radius_y } => (radius_x * radius_y).sqrt(),
             Slider::HeightMap(m) => {
                 // Curvature from the second differences around the lowest sample.
@@ -193,6 +216,7 @@ impl Slider {
                     let x = grid.x(i);
                     let (fv, dv) = match self {
                         Slider::Sphere { radius } => ((x * x + y * y) / (2.0 * radius), x / radius),
+                        Slider::Cylinder { radius } => (x * x / (2.0 * radius), x / radius),
                         Slider::Ellipsoid { radius_x, radius_y } => (
                             x * x / (2.0 * radius_x) + y * y / (2.0 * radius_y),
                             x / radius_x,

@@ -99,9 +99,11 @@ pub struct Summary {
     pub max_pressure_y: f64,
     /// Number of loaded cells times the cell area.
     pub contact_area: f64,
-    /// Smallest x covered by a loaded cell (cell edge).
+    /// Smallest x covered by a loaded cell (cell edge; a line contact's edge is
+    /// located inside the cell from the pressure's square-root fall).
     pub contact_x_min: f64,
-    /// Largest x covered by a loaded cell (cell edge).
+    /// Largest x covered by a loaded cell (cell edge; a line contact's located
+    /// inside the cell).
     pub contact_x_max: f64,
     /// Smallest y covered by a loaded cell (cell edge).
     pub contact_y_min: f64,
@@ -165,6 +167,34 @@ impl Summary {
     }
 }
 
+/// The edges of a line contact's loaded span located inside the cells: where the
+/// square of the pressure, linear in the distance to an edge where the pressure
+/// goes as its square root (an elastic or viscoelastic body's edge; Johnson, Contact
+/// Mechanics, eq. 4.45), extrapolated from the two outermost loaded cells, vanishes;
+/// kept between the outermost loaded cell's centre and the next cell's, and at the
+/// cell face when the pressure does not rise inward.
+fn line_contact_edges(g: &Grid, p: &[f64]) -> [f64; 2] {
+    let first = p.iter().position(|&v| v > 0.0).unwrap_or(0);
+    let last = p.iter().rposition(|&v| v > 0.0).unwrap_or(0);
+    let h = g.cell;
+    // The distance beyond the outermost centre (outer pressure `a`, next inward `b`).
+    let beyond = |a: f64, b: f64| {
+        let (qa, qb) = (a * a, b * b);
+        if qb > qa {
+            (h * qa / (qb - qa)).min(h)
+        } else {
+            0.5 * h
+        }
+    };
+    if last < first + 1 {
+        return [g.x(first) - 0.5 * h, g.x(last) + 0.5 * h];
+    }
+    [
+        g.x(first) - beyond(p[first], p[first + 1]),
+        g.x(last) + beyond(p[last], p[last - 1]),
+    ]
+}
+
 impl Solution {
     /// The pressure each cell carries on average: [`Solution::pressure`] but at the
     /// contacts' entry cells ([`crate::layer::ContactEdge`]).
@@ -181,7 +211,7 @@ impl Solution {
     /// The scalar results.
     pub fn summary(&self) -> Summary {
         let g = &self.grid;
-        let area = g.cell_area();
+        let area = g.cell_measure();
         let mean = self.mean_pressure();
         let (mut pmax, mut kmax) = (0.0, 0);
         let (mut xmin, mut xmax, mut ymin, mut ymax) = (
@@ -210,6 +240,9 @@ impl Solution {
                     traction += self.shape_slope[k] * mean[k] * area;
                 }
             }
+        }
+        if g.is_line() && count > 0 {
+            [xmin, xmax] = line_contact_edges(g, &mean);
         }
         let mu = traction / self.normal_load;
         Summary {

@@ -16,7 +16,7 @@
 
 use crate::case::{Body, Case};
 use crate::error::{Error, Result};
-use crate::grid::Grid;
+use crate::grid::{Geometry, Grid};
 use crate::layer::{ComplianceLaw, Layer, SolverUnits};
 use crate::shape::{HeightMap, Slider};
 use crate::solution::Solution;
@@ -31,6 +31,9 @@ pub(crate) struct Scales {
     pub modulus: f64,
     /// Unit of time.
     pub time: f64,
+    /// Whether forces are per unit length (a line contact): their unit is then
+    /// modulus times length, else modulus times length squared.
+    pub per_length: bool,
 }
 
 /// The power of two nearest `x` (on a log scale), kept among the normal numbers;
@@ -52,6 +55,10 @@ fn grid_lengths(g: &Grid, f: impl Fn(f64) -> f64) -> Grid {
         cell: f(g.cell),
         x0: f(g.x0),
         y0: f(g.y0),
+        geometry: match g.geometry {
+            Geometry::Point => Geometry::Point,
+            Geometry::Line { datum } => Geometry::Line { datum: f(datum) },
+        },
     }
 }
 
@@ -70,6 +77,7 @@ impl Scales {
             length: power_of_two_near(length),
             modulus: power_of_two_near(case.body.reference_modulus()),
             time: power_of_two_near(time),
+            per_length: case.slider.is_line(),
         }
     }
 
@@ -82,6 +90,7 @@ impl Scales {
             length: power_of_two_near(grid.cell * grid.nx.max(grid.ny) as f64),
             modulus: power_of_two_near(body.reference_modulus()),
             time: 1.0,
+            per_length: grid.is_line(),
         }
     }
 
@@ -113,7 +122,20 @@ impl Scales {
     /// A force (pressure times area), divided one factor at a time so that no
     /// intermediate leaves the range a scaled force can have.
     fn force(&self, q: f64) -> f64 {
-        q / self.modulus / self.length / self.length
+        if self.per_length {
+            q / self.modulus / self.length
+        } else {
+            q / self.modulus / self.length / self.length
+        }
+    }
+
+    /// A force of the solver back in the case's units.
+    fn unscaled_force(&self, q: f64) -> f64 {
+        if self.per_length {
+            q * self.modulus * self.length
+        } else {
+            q * self.modulus * self.length * self.length
+        }
     }
 
     /// A body in these units.
@@ -136,6 +158,9 @@ impl Scales {
                 cell_size: self.length(m.cell_size),
                 heights: m.heights.iter().map(|&h| self.length(h)).collect(),
             }),
+            Slider::Cylinder { radius } => Slider::Cylinder {
+                radius: self.length(*radius),
+            },
         }
     }
 
@@ -181,6 +206,7 @@ impl Scales {
             .map_err(|e| self.out_of_range(e))?;
         scaled.loading.normal_load = self.force(case.loading.normal_load);
         scaled.loading.velocity = case.loading.velocity.map(|v| v / self.length * self.time);
+        scaled.loading.reference_distance = case.loading.reference_distance.map(|d| self.length(d));
         scaled.grid.half_width = case.grid.half_width.map(|w| w.map(|x| self.length(x)));
         scaled.grid.centre = case.grid.centre.map(|c| c.map(|x| self.length(x)));
         scaled.validate().map_err(|e| self.out_of_range(e))?;
@@ -228,7 +254,7 @@ impl Scales {
             gap: lengths(s.gap),
             shape: lengths(s.shape),
             shape_slope: s.shape_slope,
-            dissipated_force: s.dissipated_force * self.modulus * self.length * self.length,
+            dissipated_force: self.unscaled_force(s.dissipated_force),
             approach: s.approach * self.length,
             normal_load,
             info: s.info,

@@ -37,6 +37,7 @@ fn solve_on(body: Body, load: f64, half_width: f64, cells: usize) -> Summary {
         loading: Loading {
             normal_load: load,
             velocity: None,
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [cells, cells],

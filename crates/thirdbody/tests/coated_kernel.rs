@@ -302,6 +302,7 @@ fn case_with_a_bad_coating_is_rejected_with_the_field_named() {
         loading: Loading {
             normal_load: 1e-5,
             velocity: None,
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [32, 32],

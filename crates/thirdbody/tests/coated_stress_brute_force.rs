@@ -301,6 +301,7 @@ fn stiff_coating_sections_agree_with_a_brute_force_fourier_quadrature() {
         loading: Loading {
             normal_load: 5e-6,
             velocity: None,
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [128, 128],

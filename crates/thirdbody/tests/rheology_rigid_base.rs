@@ -29,6 +29,7 @@ fn case(rheology: Rheology, load: f64, velocity: f64, cells: [usize; 2], r: &Ref
         loading: Loading {
             normal_load: load,
             velocity: Some(velocity),
+            reference_distance: None,
         },
         grid: GridSpec {
             cells,

@@ -296,6 +296,7 @@ fn rigid_base_case(layer: Layer, cells: [usize; 2]) -> Case {
         loading: Loading {
             normal_load: LOAD,
             velocity: Some(VELOCITY),
+            reference_distance: None,
         },
         grid: GridSpec {
             cells,

@@ -233,6 +233,7 @@ fn solved_hertz() -> (Case, thirdbody::Solution, f64, f64) {
         loading: Loading {
             normal_load: load,
             velocity: None,
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [n, n],

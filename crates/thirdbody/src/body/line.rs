@@ -124,7 +124,8 @@ mod tests {
             let strip = strip_displacement(x, cell, reference);
             let correction = 2.0 / PI * cell * cell * cell / (24.0 * x * x);
             assert!(
-                (strip - (line + correction)).abs() < 1e-12 * (1.0 + line.abs()) + (cell / x).powi(4),
+                (strip - (line + correction)).abs()
+                    < 1e-12 * (1.0 + line.abs()) + (cell / x).powi(4),
                 "{x}: {strip} vs {line} + {correction}"
             );
         }

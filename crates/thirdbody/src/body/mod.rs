@@ -43,7 +43,7 @@ pub enum Side {
 use crate::case::Body;
 use crate::convolution::{ConvolutionPlan, KernelSpectrum};
 use crate::error::Result;
-use crate::grid::Grid;
+use crate::grid::{Geometry, Grid};
 use crate::provenance::Reference;
 use crate::stress::StressKernels;
 
@@ -181,10 +181,12 @@ pub fn surface_kernel(
     plan: &Arc<ConvolutionPlan>,
     velocity: f64,
 ) -> Result<KernelSpectrum> {
-    match body
-        .model()
-        .surface_kernel(grid.cell(), grid.nx(), grid.ny(), velocity)?
-    {
+    let model = body.model();
+    let kernel = match grid.geometry() {
+        Geometry::Point => model.surface_kernel(grid.cell(), grid.nx(), grid.ny(), velocity)?,
+        Geometry::Line { datum } => model.line_kernel(grid.cell(), grid.nx(), velocity, datum)?,
+    };
+    match kernel {
         SurfaceKernel::Even { quadrant, .. } => plan.even_kernel(quadrant),
         kernel @ SurfaceKernel::EvenInY { .. } => {
             Ok(plan.kernel_spectrum(|di, dj| kernel.at(di, dj)))

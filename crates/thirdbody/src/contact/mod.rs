@@ -503,13 +503,17 @@ fn scout(
     params: &SolverParams,
     kernels: &mut KernelCache,
 ) -> Option<(Grid, (Grid, Vec<f64>))> {
-    let across = first.nx.min(first.ny);
+    let across = if first.is_line() {
+        first.nx
+    } else {
+        first.nx.min(first.ny)
+    };
     if across < MIN_SCOUTED_CELLS {
         return None;
     }
     let factor = (across / SCOUT_CELLS).max(2);
     let mut coarse = case.clone();
-    coarse.grid.cells = [first.nx / factor, first.ny / factor];
+    coarse.grid.cells = [first.nx / factor, (first.ny / factor).max(1)];
     let solution =
         solve_on_windows(&coarse, params, kernels, &mut |_| ControlFlow::Continue(())).ok()?;
     let window = window::fit_to_contact(first.nx, first.ny, &solution.grid, &solution.pressure)?;
@@ -685,7 +689,7 @@ fn finish(
         let w = load_weights(&entries, n);
         p.iter().zip(&w).map(|(p, w)| p * w).sum()
     };
-    let scale = load / (sum * grid.cell_area());
+    let scale = load / (sum * grid.cell_measure());
     p.iter_mut().for_each(|v| *v *= scale);
     let mut wb = vec![0.0; n];
     OnCellMeans::new(problem.influence.as_mut(), &entries).apply_unchecked(&p, &mut wb);

@@ -150,7 +150,7 @@ pub(crate) fn semismooth_newton(
     let weights = (!entries.is_empty()).then(|| load_weights(entries, f.len()));
     let weighted = |k: usize, v: f64| weights.as_ref().map_or(v, |w| w[k] * v);
     let load = problem.load;
-    let cell_area = problem.grid.cell_area();
+    let cell_measure = problem.grid.cell_measure();
     let mut monitor = Monitor::new(params, super::NEWTON_STAGNATION_WINDOW, observer);
     let n = f.len();
     // Passes over the cells are split in fixed chunks (crate::passes): the same bits
@@ -160,7 +160,7 @@ pub(crate) fn semismooth_newton(
     let self_coefficient = op.self_coefficient();
     let layer0 = layer.zero_pressure_self_compliance();
     let stiffness = 1.0 / (self_coefficient + layer0);
-    let target_sum = load / cell_area;
+    let target_sum = load / cell_measure;
 
     let mut wb = vec![0.0; n];
     let mut wl = vec![0.0; n];

@@ -38,14 +38,14 @@ pub(crate) fn polonsky_keer(
     let f = &problem.shape;
     let op = problem.influence.as_mut();
     let load = problem.load;
-    let cell_area = problem.grid.cell_area();
+    let cell_measure = problem.grid.cell_measure();
     let mut monitor = Monitor::new(params, super::CG_STAGNATION_WINDOW, observer);
     let n = f.len();
     // Every pass over the cells below is split into fixed chunks (crate::passes), so
     // the iterates are the same bits on any number of threads.
     let passes = Passes::new(n, params.parallelism);
     let min_len = passes.min_len();
-    let target_sum = load / cell_area;
+    let target_sum = load / cell_measure;
     let scale = target_sum / passes.sum(n, |a, b| [p[a..b].iter().sum::<f64>()])[0];
     if scale.is_finite() {
         passes.scale(p, scale);

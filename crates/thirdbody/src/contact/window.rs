@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::case::Case;
 use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
-use crate::grid::Grid;
+use crate::grid::{Geometry, Grid};
 use crate::layer::LayerEstimate;
 use crate::passes::Passes;
 use crate::solution::Solution;
@@ -41,24 +41,38 @@ pub(crate) struct ContactEstimate {
 }
 
 impl ContactEstimate {
+    /// The estimates of `case`. A line contact's (load Q per unit length) are the
+    /// plane-strain ones: Hertz `a = (4 Q R / (pi E*))^(1/2)` (Johnson eq. 4.43),
+    /// a Winkler bed `a = (3 Q R C0 / 2)^(1/3)`, and the creep-dominated limit
+    /// `p ~ V T x / (C0 R)` ahead of the first contact, `r = (2 Q C0 R / (V T))^(1/2)`.
     pub fn of(case: &Case) -> Self {
+        use std::f64::consts::PI;
         let r = case.slider.equivalent_radius();
         let q = case.loading.normal_load;
         let modulus = case.body.model().softest_modulus();
-        let hertz = (3.0 * q * r / (4.0 * modulus)).cbrt();
+        let line = case.slider.is_line();
+        let hertz = if line {
+            (4.0 * q * r / (PI * modulus)).sqrt()
+        } else {
+            (3.0 * q * r / (4.0 * modulus)).cbrt()
+        };
         let (mut symmetric, mut leading) = (hertz, hertz);
         let layer = case.layer.as_ref().map(|l| l.estimate());
         if let Some(layer) = &layer {
             let c0 = layer.compliance;
-            let winkler = (4.0 * r * c0 * q / std::f64::consts::PI).powf(0.25);
+            let winkler = if line {
+                (1.5 * q * r * c0).cbrt()
+            } else {
+                (4.0 * r * c0 * q / PI).powf(0.25)
+            };
             symmetric = hertz.max(winkler);
             let vt = case.velocity() * layer.relaxation_time;
             // Creep matters when V T is small against the contact; the creep length
             // estimate is then the larger one.
-            let creep = if vt.is_finite() {
-                (3.0 * q * c0 * r / (2.0 * vt)).cbrt()
-            } else {
-                0.0
+            let creep = match (vt.is_finite(), line) {
+                (false, _) => 0.0,
+                (true, true) => (2.0 * q * c0 * r / vt).sqrt(),
+                (true, false) => (3.0 * q * c0 * r / (2.0 * vt)).cbrt(),
             };
             leading = symmetric.max(creep);
         }
@@ -75,9 +89,10 @@ impl ContactEstimate {
 /// The first window: the case's fixed one, or one around the estimated contact.
 pub(crate) fn initial_window(case: &Case) -> Result<Grid> {
     let [nx, ny] = case.grid.cells;
+    let geometry = case.geometry();
     if let Some([wx, _]) = case.grid.half_width {
         let centre = case.grid.centre.unwrap_or([0.0, 0.0]);
-        return Grid::centred(nx, ny, 2.0 * wx / nx as f64, centre);
+        return window(geometry, nx, ny, 2.0 * wx / nx as f64, centre);
     }
     let e = ContactEstimate::of(case);
     for (extent, keys) in [
@@ -105,12 +120,35 @@ pub(crate) fn initial_window(case: &Case) -> Result<Grid> {
     }
     let x_lo = -MARGIN * e.symmetric_radius;
     let x_hi = MARGIN * e.leading_extent;
-    let half_y = MARGIN * e.leading_extent;
-    fit(nx, ny, [x_lo, x_hi], [-half_y, half_y])
+    let half_y = match geometry {
+        Geometry::Point => MARGIN * e.leading_extent,
+        Geometry::Line { .. } => 0.0,
+    };
+    fit(geometry, nx, ny, [x_lo, x_hi], [-half_y, half_y])
+}
+
+/// The window of `geometry` of `nx x ny` cells (a line's: `nx`) of side `cell`
+/// centred on `centre`.
+fn window(geometry: Geometry, nx: usize, ny: usize, cell: f64, centre: [f64; 2]) -> Result<Grid> {
+    match geometry {
+        Geometry::Point => Grid::centred(nx, ny, cell, centre),
+        Geometry::Line { datum } => Grid::line(nx, cell, centre[0], datum),
+    }
+}
+
+/// The cell that fits lengths `lx x ly` into `nx x ny` cells with the margin and two
+/// spare cells a side (a line contact: `lx` into `nx`).
+fn refit_cell(grid_is_line: bool, nx: usize, ny: usize, lx: f64, ly: f64) -> f64 {
+    let along_x = lx * 1.1 / (nx as f64 - 4.0);
+    if grid_is_line {
+        along_x
+    } else {
+        along_x.max(ly * 1.1 / (ny as f64 - 4.0))
+    }
 }
 
 /// The grid of `nx x ny` square cells that holds the box `xs x ys`, centred on it.
-fn fit(nx: usize, ny: usize, xs: [f64; 2], ys: [f64; 2]) -> Result<Grid> {
+fn fit(geometry: Geometry, nx: usize, ny: usize, xs: [f64; 2], ys: [f64; 2]) -> Result<Grid> {
     let cell = ((xs[1] - xs[0]) / nx as f64).max((ys[1] - ys[0]) / ny as f64);
     if !(cell.is_finite() && cell > 0.0) {
         return Err(Error::invalid(
@@ -119,7 +157,13 @@ fn fit(nx: usize, ny: usize, xs: [f64; 2], ys: [f64; 2]) -> Result<Grid> {
             "a window of finite positive size (check the load and moduli)",
         ));
     }
-    Grid::centred(nx, ny, cell, [(xs[0] + xs[1]) / 2.0, (ys[0] + ys[1]) / 2.0])
+    window(
+        geometry,
+        nx,
+        ny,
+        cell,
+        [(xs[0] + xs[1]) / 2.0, (ys[0] + ys[1]) / 2.0],
+    )
 }
 
 /// Index ranges `[i_min, i_max] x [j_min, j_max]` of the loaded cells.
@@ -145,13 +189,13 @@ pub(crate) fn next_window(grid: &Grid, p: &[f64], touches: bool) -> Option<Grid>
     let ys = [grid.y(b[2]) - 0.5 * h, grid.y(b[3]) + 0.5 * h];
     let centre = [(xs[0] + xs[1]) / 2.0, (ys[0] + ys[1]) / 2.0];
     if touches {
-        return Grid::centred(grid.nx, grid.ny, ENLARGE * h, centre).ok();
+        return grid.resized(grid.nx, grid.ny, ENLARGE * h, centre).ok();
     }
     // Cells that would hold the contact with the margin and two spare cells a side.
     let (lx, ly) = (xs[1] - xs[0], ys[1] - ys[0]);
-    let cell = (lx * 1.1 / (grid.nx as f64 - 4.0)).max(ly * 1.1 / (grid.ny as f64 - 4.0));
+    let cell = refit_cell(grid.is_line(), grid.nx, grid.ny, lx, ly);
     if cell < REFIT_GAIN * h {
-        Grid::centred(grid.nx, grid.ny, cell, centre).ok()
+        grid.resized(grid.nx, grid.ny, cell, centre).ok()
     } else {
         None
     }
@@ -167,8 +211,8 @@ pub(crate) fn fit_to_contact(nx: usize, ny: usize, coarse: &Grid, p: &[f64]) -> 
     let ys = [coarse.y(b[2]) - 1.5 * h, coarse.y(b[3]) + 1.5 * h];
     let centre = [(xs[0] + xs[1]) / 2.0, (ys[0] + ys[1]) / 2.0];
     let (lx, ly) = (xs[1] - xs[0], ys[1] - ys[0]);
-    let cell = (lx * 1.1 / (nx as f64 - 4.0)).max(ly * 1.1 / (ny as f64 - 4.0));
-    Grid::centred(nx, ny, cell, centre).ok()
+    let cell = refit_cell(coarse.is_line(), nx, ny, lx, ly);
+    coarse.resized(nx, ny, cell, centre).ok()
 }
 
 /// Whether the lowest cell of the slider's height `f` (the first cell to touch)
@@ -187,7 +231,12 @@ pub(crate) fn lowest_point_on_edge(grid: &Grid, f: &[f64]) -> bool {
 pub(crate) fn check_resolution(solution: &Solution) -> Result<()> {
     let g = &solution.grid;
     if let Some(b) = loaded_box(g, &solution.pressure) {
-        let across = (b[1] - b[0] + 1).min(b[3] - b[2] + 1);
+        let along_x = b[1] - b[0] + 1;
+        let across = if g.is_line() {
+            along_x
+        } else {
+            along_x.min(b[3] - b[2] + 1)
+        };
         if across < MIN_CELLS_ACROSS {
             return Err(Error::invalid(
                 "grid.half_width",
@@ -210,6 +259,19 @@ pub(crate) fn interpolate(
     parallelism: Parallelism,
 ) -> Vec<f64> {
     let mut out = vec![0.0; new.len()];
+    if old.is_line() {
+        // One row: linear interpolation along x.
+        for (i, o) in out.iter_mut().enumerate() {
+            let u = (new.x(i) - old.x0) / old.cell - 0.5;
+            if u < 0.0 || u > (old.nx - 1) as f64 {
+                continue;
+            }
+            let i0 = (u as usize).min(old.nx - 2);
+            let s = u - i0 as f64;
+            *o = (1.0 - s) * field[i0] + s * field[i0 + 1];
+        }
+        return out;
+    }
     out.par_chunks_mut(new.nx)
         .enumerate()
         .with_min_len(Passes::new(new.len(), parallelism).min_rows(new.nx))
@@ -306,10 +368,10 @@ pub(crate) fn rigid_base_guess(
                 total
             })
             .collect();
-        row_loads.iter().sum::<f64>() * grid.cell_area()
+        row_loads.iter().sum::<f64>() * grid.cell_measure()
     };
     let fmin = f.iter().copied().fold(f64::INFINITY, f64::min);
-    let (mut lo, mut hi) = (fmin, fmin + diag * load / grid.cell_area());
+    let (mut lo, mut hi) = (fmin, fmin + diag * load / grid.cell_measure());
     // Expand until the bed carries the load (always reached: load grows without bound).
     for _ in 0..200 {
         if sweep(hi, &mut p) >= load {

@@ -255,6 +255,7 @@ impl Layer {
     ) -> Box<dyn LayerResponse> {
         Box::new(
             ViscoelasticRows::new(self.clone(), grid.nx, grid.ny, grid.cell, velocity)
+                .with_row_length(if grid.is_line() { 1.0 } else { grid.cell })
                 .with_parallelism(parallelism),
         )
     }

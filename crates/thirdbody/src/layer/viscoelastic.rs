@@ -419,7 +419,9 @@ pub struct ViscoelasticRows {
     layer: Layer,
     nx: usize,
     ny: usize,
-    cell: f64,
+    /// The extent of a row along y: the cell's side `h` (a point contact's rows),
+    /// or 1 for a line contact's one row (forces per unit length).
+    row_length: f64,
     /// `C[0]` of the law the parts are scaled against.
     reference: f64,
     /// `C_g / C[0]`.
@@ -531,11 +533,17 @@ impl ViscoelasticRows {
             layer,
             nx,
             ny,
-            cell,
+            row_length: cell,
             reference,
             flow_per_cell,
             branches,
         }
+    }
+
+    /// The same rows, each `length` long along y (a line contact's one row: 1).
+    pub fn with_row_length(mut self, length: f64) -> Self {
+        self.row_length = length;
+        self
     }
 
     /// Splits the row passes over the rayon pool only when `parallelism` asks for it
@@ -746,8 +754,9 @@ impl ViscoelasticRows {
             .collect();
         let total: f64 = rows.iter().fold(0.0, |t, r| t + r);
         // Each cell's term is the energy per unit area dissipated while material
-        // crosses it; a row of width h carries h V of area per unit time.
-        total * self.cell
+        // crosses it; a row of width h (a line contact's: of unit length) carries
+        // h V of area per unit time.
+        total * self.row_length
     }
 
     /// The linearisation at a pressure field, for Newton steps.

@@ -17,6 +17,7 @@ pub fn sphere(load: f64, cells: usize) -> Case {
         loading: Loading {
             normal_load: load,
             velocity: None,
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [cells, cells],

@@ -28,6 +28,7 @@ fn coated(ratio: f64, thickness: f64) -> Case {
         loading: Loading {
             normal_load: 5e-6,
             velocity: None,
+            reference_distance: None,
         },
         // 128 cells reproduce the breakdown (E1/E2 = 80, 90, 95, 100 at h1 = 0.002).
         grid: GridSpec {
@@ -44,7 +45,7 @@ fn check(ratio: f64, thickness: f64) {
     let case = coated(ratio, thickness);
     let cg = solve(&case, &SolverParams::default()).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_eq!(cg.info.method, Method::PolonskyKeer, "{label}");
-    let load: f64 = cg.pressure.iter().sum::<f64>() * cg.grid.cell_area();
+    let load: f64 = cg.pressure.iter().sum::<f64>() * cg.grid.cell_measure();
     assert!(
         (load / 5e-6 - 1.0).abs() < 1e-10,
         "{label}: load {load:e} against 5e-6"

@@ -35,6 +35,10 @@ impl Factors {
     fn force(&self) -> f64 {
         self.modulus * self.length * self.length
     }
+    /// A force per unit length (a line contact's loads and forces).
+    fn force_per_length(&self) -> f64 {
+        self.modulus * self.length
+    }
 }
 
 /// The case rewritten in other units (written here from the physics, independently
@@ -91,8 +95,16 @@ fn rescale(case: &Case, f: &Factors) -> Case {
             cell_size: m.cell_size * f.length,
             heights: m.heights.iter().map(|h| h * f.length).collect(),
         }),
+        Slider::Cylinder { radius } => Slider::Cylinder {
+            radius: radius * f.length,
+        },
     };
-    c.loading.normal_load *= f.force();
+    c.loading.normal_load *= if case.slider.is_line() {
+        f.force_per_length()
+    } else {
+        f.force()
+    };
+    c.loading.reference_distance = case.loading.reference_distance.map(|d| d * f.length);
     c.loading.velocity = case.loading.velocity.map(|v| v * f.length / f.time);
     c.grid.half_width = case.grid.half_width.map(|w| w.map(|x| x * f.length));
     c.grid.centre = case.grid.centre.map(|w| w.map(|x| x * f.length));
@@ -389,6 +401,13 @@ fn cases() -> Vec<(String, Case)> {
     fixed.grid.half_width = Some([0.04, 0.04]);
     fixed.grid.centre = Some([0.005, -0.002]);
     out.push(("fixed_window".into(), fixed));
+    // A line contact with the paper's layer and a datum of its own.
+    let mut line = fig3.clone();
+    line.slider = Slider::Cylinder { radius: 1.0 };
+    line.grid.cells = [64, 1];
+    line.loading.normal_load = 2e-4;
+    line.loading.reference_distance = Some(3.0);
+    out.push(("line_contact".into(), line));
     out
 }
 
@@ -430,7 +449,18 @@ fn tight() -> SolverParams {
 fn compare(name: &str, a: &Solution, b: &Solution, f: &Factors) -> Result<(), String> {
     let (sa, sb) = (a.summary(), b.summary());
     let window = a.grid.cell() * a.grid.nx().max(a.grid.ny()) as f64;
-    let (l, p, q) = (f.length, f.modulus, f.force());
+    let line = a.grid.is_line();
+    let (l, p, q) = (
+        f.length,
+        f.modulus,
+        if line {
+            f.force_per_length()
+        } else {
+            f.force()
+        },
+    );
+    // A line contact's cell measure is a width (per unit length), a point's an area.
+    let measure = if line { l } else { l * l };
     let mut worst: Vec<(&str, f64)> = vec![
         (
             "normal_load",
@@ -446,7 +476,7 @@ fn compare(name: &str, a: &Solution, b: &Solution, f: &Factors) -> Result<(), St
         ),
         (
             "contact_area",
-            mismatch(sa.contact_area, sb.contact_area, l * l, sa.contact_area),
+            mismatch(sa.contact_area, sb.contact_area, measure, sa.contact_area),
         ),
         (
             "contact_x_min",
@@ -565,7 +595,7 @@ proptest! {
 
     #[test]
     fn every_result_scales_with_its_units(
-        k in 0usize..15,
+        k in 0usize..16,
         log_length in -6.0f64..6.0,
         log_modulus in -6.0f64..12.0,
         log_time in -6.0f64..6.0,
@@ -586,7 +616,7 @@ proptest! {
 #[test]
 fn every_case_of_the_test_is_drawn() {
     // The strategy's index range covers every case.
-    assert_eq!(references().len(), 15);
+    assert_eq!(references().len(), 16);
 }
 
 /// The case that once broke the solver: Hertz with R and E2 written as 1e-100 (load 5e-306) failed with

@@ -52,6 +52,7 @@ fn case(r: Resolution, body: Body, layer: Layer, load: f64, velocity: f64) -> Ca
         loading: Loading {
             normal_load: load,
             velocity: Some(velocity),
+            reference_distance: None,
         },
         grid: GridSpec {
             cells: [r.cells, r.cells],

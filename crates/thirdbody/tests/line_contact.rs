@@ -1,0 +1,82 @@
+//! Line contacts (plane strain) against closed forms: Hertz's cylinder on an
+//! elastic half-space (Johnson, Contact Mechanics, eq. 4.43-4.45).
+
+use thirdbody::*;
+
+fn cylinder(load: f64, cells: usize) -> Case {
+    Case {
+        slider: Slider::Cylinder { radius: 1.0 },
+        body: Body::Homogeneous(Elastic {
+            young: 1.0,
+            poisson: 0.3,
+        }),
+        layer: None,
+        loading: Loading {
+            normal_load: load,
+            velocity: None,
+            reference_distance: None,
+        },
+        grid: GridSpec {
+            cells: [cells, 1],
+            half_width: None,
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    }
+}
+
+/// Hertz: half-width `a = (4 Q R / (pi E*))^(1/2)`, peak `p0 = 2 Q / (pi a)`,
+/// pressure `p0 (1 - x^2 / a^2)^(1/2)` (Johnson eq. 4.43-4.45), and the approach
+/// against the surface at distance L from the load,
+/// `D = (2 Q / (pi E*)) (ln(2 L / a) + 1/2)`: `(2 / (pi E*)) int p(s) ln(L / |s|) ds`
+/// with `int_{-1}^{1} (1 - t^2)^(1/2) ln|t| dt = -(pi / 2)(ln 2 + 1/2)`.
+#[test]
+fn hertz_line_contact_half_width_peak_pressure_and_approach() {
+    use std::f64::consts::PI;
+    let (q, r) = (1e-3, 1.0);
+    let e_star = 1.0 / (1.0 - 0.09);
+    let a = (4.0 * q * r / (PI * e_star)).sqrt();
+    let p0 = 2.0 * q / (PI * a);
+    for (cells, datum) in [(1024, None), (1024, Some(20.0)), (4096, None)] {
+        let mut case = cylinder(q, cells);
+        case.loading.reference_distance = datum;
+        let s = solve(&case, &SolverParams::default()).unwrap();
+        let m = s.summary();
+        let half_width = 0.5 * (m.contact_x_max - m.contact_x_min);
+        assert!(
+            (half_width / a - 1.0).abs() < 1e-3,
+            "{cells}: a {half_width} vs {a}"
+        );
+        assert!(
+            (m.max_pressure / p0 - 1.0).abs() < 1e-3,
+            "{cells}: p0 {}",
+            m.max_pressure
+        );
+        assert!((m.contact_x_max + m.contact_x_min).abs() < 1e-6 * a);
+        let load: f64 = s.pressure.iter().sum::<f64>() * s.grid.cell();
+        assert!((load / q - 1.0).abs() < 1e-12, "load balance {load}");
+        let l = datum.unwrap_or(r);
+        let approach = 2.0 * q / (PI * e_star) * ((2.0 * l / a).ln() + 0.5);
+        assert!(
+            (m.penetration / approach - 1.0).abs() < 1e-4,
+            "{cells}: D {} vs {approach}",
+            m.penetration
+        );
+        // The profile, cell by cell, within a small part of p0 (the cells cut by
+        // the edges carry the discretisation's error).
+        let worst = (0..s.grid.nx())
+            .map(|i| {
+                let x = s.grid.x(i);
+                let exact = p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt();
+                (s.pressure[i] - exact).abs()
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 0.02 * p0, "{cells}: worst {worst:e}");
+        assert!(
+            m.friction_coefficient.abs() < 1e-9 * a / r,
+            "mu {}",
+            m.friction_coefficient
+        );
+        assert!(s.grid.is_line() && m.ny == 1);
+    }
+}

@@ -1,0 +1,109 @@
+//! Hunter's problem: a rigid cylinder sliding steadily over a standard linear solid
+//! (Zener) half-space in plane strain (S. C. Hunter, J. Appl. Mech. 28, 1961,
+//! 611-617). The reference, `tests/data/hunter_reference.json`, is the project's own
+//! derivation of that closed form (`docs/hunter.md`: the steady contact condition
+//! reduced to a finite Hilbert problem with an exponential right-hand side, its
+//! pressure a Bessel series, the half-width from one condition at the front edge),
+//! tabulated by `tests/data/hunter_reference.py` and checked there against an
+//! independent boundary-element solution. The solver shares nothing with it.
+
+use serde::Deserialize;
+use thirdbody::body::{SolidRheology, ViscoelasticHalfSpace};
+use thirdbody::*;
+
+#[derive(Debug, Deserialize)]
+struct Row {
+    modulus_ratio: f64,
+    speed: f64,
+    half_width: f64,
+    offset: f64,
+    max_pressure: f64,
+    friction: f64,
+    largest_mu: bool,
+}
+
+const POISSON: f64 = 0.3;
+const RADIUS: f64 = 1.0;
+/// The relaxed Hertz half-width a0 against the radius.
+const A0: f64 = 0.01;
+
+/// The rigid cylinder on a Zener half-space of relaxed modulus 1 and glassy
+/// modulus `ratio`, its load per length giving the relaxed half-width `A0`, sliding
+/// at `speed` relaxed half-widths per relaxation time.
+fn hunter_case(ratio: f64, speed: f64, cells: usize) -> Case {
+    let relaxed_star = 1.0 / (1.0 - POISSON * POISSON);
+    let load = std::f64::consts::PI * relaxed_star * A0 * A0 / (4.0 * RADIUS);
+    Case {
+        slider: Slider::Cylinder { radius: RADIUS },
+        body: Body::Viscoelastic(ViscoelasticHalfSpace {
+            rheology: SolidRheology::Zener {
+                glassy_modulus: ratio,
+                relaxed_modulus: 1.0,
+                relaxation_time: 1.0,
+            },
+            poisson: POISSON,
+        }),
+        layer: None,
+        loading: Loading {
+            normal_load: load,
+            velocity: Some(speed * A0),
+            reference_distance: None,
+        },
+        grid: GridSpec {
+            cells: [cells, 1],
+            half_width: None,
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    }
+}
+
+fn reference() -> Vec<Row> {
+    serde_json::from_str(include_str!("data/hunter_reference.json")).unwrap()
+}
+
+/// Width, offset of the contact's centre from the axis, peak pressure and mu
+/// against Hunter's closed form for E_inf / E0 = 3 and 10 over four decades of
+/// V tau / a0 (1e-2 to 1e2) and at the speed of the largest mu, within 1 %.
+#[test]
+fn hunter_rigid_cylinder_on_a_standard_linear_solid() {
+    let relaxed_star = 1.0 / (1.0 - POISSON * POISSON);
+    let load = std::f64::consts::PI * relaxed_star * A0 * A0 / (4.0 * RADIUS);
+    let p0 = 2.0 * load / (std::f64::consts::PI * A0);
+    let mut worst = [0.0f64; 4];
+    for row in reference() {
+        let case = hunter_case(row.modulus_ratio, row.speed, 4096);
+        let s = solve(&case, &SolverParams::default()).unwrap();
+        let m = s.summary();
+        let half_width = 0.5 * (m.contact_x_max - m.contact_x_min) / A0;
+        let offset = 0.5 * (m.contact_x_max + m.contact_x_min) / A0;
+        let errors = [
+            half_width / row.half_width - 1.0,
+            offset / row.offset - 1.0,
+            m.max_pressure / p0 / row.max_pressure - 1.0,
+            m.friction_coefficient * RADIUS / A0 / row.friction - 1.0,
+        ];
+        eprintln!(
+            "k {} V tau/a0 {:.4e}{}: width {:+.2e}, offset {:+.2e}, p_max {:+.2e}, mu {:+.2e} \
+             (mu by energy {:+.2e})",
+            row.modulus_ratio,
+            row.speed,
+            if row.largest_mu { " (largest mu)" } else { "" },
+            errors[0],
+            errors[1],
+            errors[2],
+            errors[3],
+            m.dissipation_friction_coefficient / m.friction_coefficient - 1.0,
+        );
+        for (w, e) in worst.iter_mut().zip(errors) {
+            *w = w.max(e.abs());
+        }
+    }
+    eprintln!("worst: width, offset, p_max, mu = {worst:.2e?}");
+    for (name, e) in ["half-width", "offset", "peak pressure", "mu"]
+        .iter()
+        .zip(worst)
+    {
+        assert!(e < 0.01, "{name}: {e:.3e}");
+    }
+}
