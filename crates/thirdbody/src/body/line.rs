@@ -38,6 +38,13 @@ fn log_integral(x: f64, b: f64) -> f64 {
     }
 }
 
+/// `int_{-b}^{b} ln|x - s| ds` for the half-width `b > 0` (the strip integral of
+/// [`strip_displacement`] without its constants), free of cancellation far from
+/// the strip.
+pub fn strip_log_integral(x: f64, half_width: f64) -> f64 {
+    log_integral(x, half_width)
+}
+
 /// The displacement at `x` of the surface of a half-space of unit plane-strain
 /// compliance under a unit pressure on the strip of width `cell` centred at 0,
 /// measured against the surface at distance `reference` from the load (module

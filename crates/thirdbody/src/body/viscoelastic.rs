@@ -91,6 +91,55 @@
 //! (this covers the log-growing range `lambda >> X_t` in closed quadrature, the
 //! exponential-integral behaviour `e^beta E_1(beta)` of `mu_0`, without any
 //! truncation of the window).
+//!
+//! # Line contacts (plane strain)
+//!
+//! [`steady_sliding_line_kernel`] is the same hereditary integral with the 2-D
+//! Green's function: a cylinder along y pressed per unit length, cells of width
+//! `h` along x each loaded uniformly along y. The elastic strip kernel per unit
+//! plane-strain compliance is `g(X) = (2 / pi) int_{-h/2}^{h/2} ln(L / |X - s|) ds`
+//! ([`super::line::strip_displacement`], datum: the surface at distance `L` from
+//! the load), and the derivation above, with `W = (2 / pi) int p ln(L / |x - s|)
+//! ds` in place of Love's integral, gives
+//! `K(X) = J_g g(X) + sum_k J_k (1 / l_k) int_0^inf exp(-u / l_k) g(X + u) du`.
+//! In cell units `g(X) = (2 h / pi) (ln(L / h) - I(X))` with the strip's
+//! logarithmic integral `I(X) = int_{-1/2}^{1/2} ln|X - s| ds`, and since the
+//! exponential weight has unit mass the branch term is
+//! `(2 h / pi) J_k (ln(L / h) - N_k(X))`, `N(X) = (1 / lambda) int_0^inf
+//! exp(-u / lambda) I(X + u) du`. Because `I` grows like `ln|X|`, `N` does not
+//! vanish as `lambda -> inf`: `N(X) = ln(lambda) - gamma + O((|X| / lambda)
+//! ln(lambda / |X|))` (gamma Euler's constant) for `|X| << lambda`. The kernel
+//! keeps the datum of its long-wave compliance: far from the load (`|X| >>
+//! l_k`) it is `J_relaxed g(X) + O(l / X)`, so the surface at distance `L >> l`
+//! stays the zero. As `V -> 0` it tends to `J_relaxed g`; as `V -> inf` its
+//! shape `K(X) - K(0)` tends to `J_g (g(X) - g(0))` but its level falls like
+//! `(2 h / pi) J_k (ln(L / l_k) + gamma)` per branch, without bound: a material
+//! point far upstream has crept under the load's logarithmic far field for a
+//! time `~ L / V` and longer. That level is a rigid translation of the surface
+//! (it moves the approach, not the pressure). Conventions: `V = +inf` (and a
+//! frozen branch) gives `J_g g` exactly, as the point kernel does; a branch whose
+//! creep length exceeds 1e100 cells contributes the constant
+//! `(2 h / pi) J_k (ln(L / (h lambda)) + gamma)` (the neglected terms are below
+//! 1e-90 of it), below 1e-100 cells its relaxed elastic kernel.
+//!
+//! *Method.* `N` at the integer offsets obeys the panel recursion above with
+//! `L_1` replaced by `I`, on the same 24-node product-integration panels (unit
+//! panels between cell centres, the four half panels touching the loaded cell's
+//! edges `X = -+1/2`, where `I` has the log-singular slopes `-+(X -+ 1/2) ln|X -+
+//! 1/2|`, subtracted and integrated with the same per-branch scalars; `I` is even,
+//! so the panels left of the load reuse the values on the right with mirrored
+//! weights). To keep the values small for long creep lengths the recursion runs
+//! on `N - c`, `c = max(ln(lambda) - gamma, 0)` (the weights of a panel sum to
+//! `1 - exp(-len / lambda)`, taken from `expm1`). It starts at `X_t = max(nx -
+//! 1, 4)` from the tail in closed form: with the far-field series of the strip,
+//! `I(X) = ln X - sum_{m >= 1} X^(-2m) / (4^m 2m (2m + 1))` (`X >= 4`: 12 terms
+//! reach 1e-21), `N(X_t) = ln X_t + phi(beta) - sum_m X_t^(-2m) eps_2m(beta) /
+//! (4^m 2m (2m + 1))` with `beta = X_t / lambda`, `phi(beta) = int_0^inf exp(-v)
+//! dv / (beta + v)` (`= e^beta E_1(beta)`: the exponential average of `ln` is `ln
+//! X + phi`) and `eps_n(beta) = int_0^inf exp(-v) (beta / (beta + v))^n dv` (the
+//! average of `X^-n`), all by Gauss–Legendre on the pieces of [`tail_moments`].
+//! The cost is one strip integral per node (`24 nx`, shared by the branches) and
+//! one dot product per panel and branch.
 
 use super::homogeneous::{
     half_primitive, homogeneous_surface_kernel_quadrant, rectangle_inverse_distance_integral,
@@ -117,6 +166,10 @@ const FAR_POINTS: usize = 12;
 const EXP_CUTOFF: f64 = 46.0;
 /// Creep lengths (in cells) below this are relaxed, above its inverse frozen.
 const LAMBDA_FLOOR: f64 = 1e-100;
+/// Terms of the far-field series of the strip integral in the line kernel's tail.
+const STRIP_FAR_TERMS: usize = 12;
+/// Euler's constant gamma.
+const EULER_GAMMA: f64 = 0.577_215_664_901_532_9;
 
 /// One Kelvin–Voigt branch of the creep compliance:
 /// `compliance * (1 - exp(-t / retardation_time))`.
@@ -256,16 +309,20 @@ impl BodyModel for ViscoelasticBody {
 
     fn line_kernel(
         &self,
-        _cell: f64,
-        _nx: usize,
-        _velocity: f64,
-        _reference: f64,
+        cell: f64,
+        nx: usize,
+        velocity: f64,
+        reference: f64,
     ) -> Result<SurfaceKernel> {
-        Err(crate::error::Error::invalid(
-            "slider.shape",
-            "a line contact",
-            "a point contact on a viscoelastic body (its line kernel is not built yet)",
-        ))
+        let half = steady_sliding_line_kernel(&self.creep, cell, nx, velocity, reference)?;
+        if self.creeps_at(velocity, cell) {
+            return Ok(SurfaceKernel::EvenInY { half, nx });
+        }
+        // No branch creeps at this speed: the kernel is even in x.
+        Ok(SurfaceKernel::Even {
+            quadrant: half[nx - 1..].to_vec(),
+            nx,
+        })
     }
 
     fn kernel_depends_on_velocity(&self) -> bool {
@@ -425,6 +482,237 @@ pub fn steady_sliding_kernel(
     Ok(out)
 }
 
+/// The steady-sliding plane-strain (line contact) kernel of a viscoelastic
+/// half-space on `nx` cells of width `cell` along x, each loaded uniformly along
+/// y: `[di + nx - 1]` is the normal surface displacement at the centre of the
+/// cell `di` cells away from a cell under unit pressure (`di > 0`: the field
+/// point is upstream), `-(nx - 1) <= di <= nx - 1`, measured against the surface
+/// at distance `reference` from the load for the relaxed compliance: `K(X) = J_g
+/// g(X) + sum_k J_k (1 / l_k) int_0^inf exp(-u / l_k) g(X + u) du` with `g` the
+/// elastic strip kernel (module documentation, "Line contacts", for the
+/// derivation, the limits and the level at high speed). Units as
+/// [`steady_sliding_kernel`]'s; `reference` in the length unit of `cell`.
+pub fn steady_sliding_line_kernel(
+    series: &CreepSeries,
+    cell: f64,
+    nx: usize,
+    velocity: f64,
+    reference: f64,
+) -> Result<Vec<f64>> {
+    series.validate()?;
+    if !(cell.is_finite() && cell > 0.0) {
+        return Err(invalid("cell", cell, "a finite length > 0"));
+    }
+    if velocity.is_nan() || velocity < 0.0 {
+        return Err(invalid("velocity", velocity, "a speed >= 0 (+inf allowed)"));
+    }
+    if nx == 0 {
+        return Err(Error::InvalidValue {
+            field: "grid".into(),
+            value: "0 cells".into(),
+            allowed: "at least one cell".into(),
+        });
+    }
+    if !(reference.is_finite() && reference > 0.0) {
+        return Err(invalid("reference", reference, "a finite length > 0"));
+    }
+    // Relaxed, creeping over lambda cells, or beyond 1e100 cells (a constant).
+    let mut elastic = series.glassy;
+    let mut creeping: Vec<(f64, f64)> = Vec::new();
+    let mut level = 0.0;
+    let mut total = series.glassy;
+    for b in &series.branches {
+        if !b.retardation_time.is_finite() || b.compliance == 0.0 {
+            continue;
+        }
+        let lambda = velocity * b.retardation_time / cell;
+        if lambda < LAMBDA_FLOOR {
+            elastic += b.compliance;
+        } else if lambda <= 1.0 / LAMBDA_FLOOR {
+            creeping.push((b.compliance, lambda));
+        } else if lambda.is_finite() {
+            level += b.compliance * (lambda.ln() - EULER_GAMMA);
+        } else {
+            continue;
+        }
+        total += b.compliance;
+    }
+    if elastic == 0.0 && creeping.is_empty() {
+        return Err(invalid(
+            "velocity",
+            velocity,
+            "a speed at which some compliance creeps (the body has no glassy compliance)",
+        ));
+    }
+    let n_lo = nx - 1;
+    let x_top = n_lo.max(4);
+    let (nodes, bary) = panel_nodes();
+    let strip = |x: f64| super::line::strip_log_integral(x, 0.5);
+    // table[(k - 1) * n + m] = I(k + t_m), 1 <= k < x_top.
+    let table: Vec<f64> = (1..x_top)
+        .into_par_iter()
+        .flat_map_iter(|k| nodes.iter().map(move |t| strip(k as f64 + t)))
+        .collect();
+    // The half panels starting at -1, -1/2, 0, 1/2, the edge singularity removed.
+    let half_values: Vec<Vec<f64>> = [-1.0, -0.5, 0.0, 0.5]
+        .iter()
+        .map(|&c: &f64| {
+            nodes
+                .iter()
+                .map(|t| {
+                    let x = c + 0.5 * t;
+                    if c < 0.0 {
+                        strip(x) - (x + 0.5) * (x + 0.5).abs().ln()
+                    } else {
+                        strip(x) + (x - 0.5) * (x - 0.5).abs().ln()
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    // sum_k J_k (c_k + (N_k - c_k)) over the creeping branches.
+    let averaged = creeping
+        .par_iter()
+        .map(|&(compliance, lambda)| {
+            let weights = BranchWeights::panels(compliance, lambda, &nodes, &bary);
+            line_branch(&weights, lambda, &table, &half_values, n_lo, x_top)
+        })
+        .reduce(
+            || vec![0.0; 2 * nx - 1],
+            |mut a, b| {
+                a.iter_mut().zip(&b).for_each(|(x, y)| *x += y);
+                a
+            },
+        );
+    let datum = (reference / cell).ln();
+    let scale = 2.0 * cell / PI;
+    Ok(averaged
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let x = i as f64 - n_lo as f64;
+            scale * (total * datum - elastic * strip(x) - level - a)
+        })
+        .collect())
+}
+
+/// `J_k N_k(X)` of one creeping branch at `X = -n_lo..=n_lo` (cell units), by the
+/// panel recursion on `N - c` from the tail at `x_top` (module documentation,
+/// "Line contacts"). `table[(k - 1) * n + m] = I(k + t_m)`, `half_values` the
+/// edge-subtracted `I` on the four half panels from -1 to 1.
+fn line_branch(
+    b: &BranchWeights,
+    lambda: f64,
+    table: &[f64],
+    half_values: &[Vec<f64>],
+    n_lo: usize,
+    x_top: usize,
+) -> Vec<f64> {
+    let n = b.unit.len();
+    let c = (lambda.ln() - EULER_GAMMA).max(0.0);
+    let unit_mass = -(-1.0 / lambda).exp_m1();
+    let half_mass = -(-0.5 / lambda).exp_m1();
+    let dot = |w: &[f64], v: &[f64]| -> f64 { w.iter().zip(v).map(|(a, b)| a * b).sum() };
+    let unit = |a: i64| -> f64 {
+        let s = if a >= 1 {
+            let k = a as usize;
+            dot(&b.unit, &table[(k - 1) * n..k * n])
+        } else {
+            // I is even: the panel [a, a + 1] is [-a - 1, -a] mirrored.
+            let k = (-a - 1) as usize;
+            dot(&b.unit_reversed, &table[(k - 1) * n..k * n])
+        };
+        s - c * unit_mass
+    };
+    let half = |p: usize| -> f64 {
+        // Panels ending at -1/2 / starting at -1/2 / ending at 1/2 / starting at
+        // 1/2: the edge terms (t - 1/2) ln(1/2 - t), t ln t with their signs.
+        let singular = match p {
+            0 => b.singular_end,
+            1 => b.singular_start,
+            2 => -b.singular_end,
+            _ => -b.singular_start,
+        };
+        dot(&b.half, &half_values[p]) + singular - c * half_mass
+    };
+    let (n_lo, x_top) = (n_lo as i64, x_top as i64);
+    let mut m = line_tail(x_top as f64, lambda, c);
+    let mut out = vec![0.0; (2 * n_lo + 1) as usize];
+    if x_top == n_lo {
+        out[(2 * n_lo) as usize] = m;
+    }
+    for i in (-n_lo..x_top).rev() {
+        if i == 0 || i == -1 {
+            let p = (i + 1) as usize * 2;
+            m = half(p + 1) + b.decay_half * m;
+            m = half(p) + b.decay_half * m;
+        } else {
+            m = unit(i) + b.decay_unit * m;
+        }
+        if i <= n_lo {
+            out[(i + n_lo) as usize] = m;
+        }
+    }
+    out.iter().map(|v| b.compliance * (c + v)).collect()
+}
+
+/// `N(x) - c` with `N(x) = (1 / lambda) int_0^inf exp(-u / lambda) I(x + u) du` for
+/// `x >= 4` from the strip's far-field series (module documentation, "Line
+/// contacts"), `c` either 0 or `ln(lambda) - gamma`. The logarithm of `phi` is
+/// taken out in closed form, `phi(beta) = ln(1 + 1 / beta) + int_0^1 expm1(-v) dv
+/// / (beta + v) + int_1^inf exp(-v) dv / (beta + v)`, so that `ln x + phi - c`
+/// (`ln(x + lambda) - c + ...`) is summed without cancellation for long creep
+/// lengths.
+fn line_tail(x: f64, lambda: f64, c: f64) -> f64 {
+    let gl = GaussLegendre::new(RULE_POINTS);
+    let beta = x / lambda;
+    let mut breaks: Vec<f64> = (0..=EXP_CUTOFF as usize).map(|v| v as f64).collect();
+    let ratio = 2f64.powf(0.25);
+    let mut w = beta * ratio;
+    while w - beta < EXP_CUTOFF {
+        breaks.push(w - beta);
+        w *= ratio;
+    }
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    let mut phi = 0.0;
+    let mut eps = [0.0; STRIP_FAR_TERMS];
+    for p in breaks.windows(2) {
+        let (half, mid) = (0.5 * (p[1] - p[0]), 0.5 * (p[1] + p[0]));
+        for (t, wt) in gl.nodes.iter().zip(&gl.weights) {
+            let v = mid + half * t;
+            let weight = wt * half * (-v).exp();
+            phi += if p[1] <= 1.0 {
+                wt * half * (-v).exp_m1()
+            } else {
+                weight
+            } / (beta + v);
+            let r = beta / (beta + v);
+            let r2 = r * r;
+            let mut power = 1.0;
+            for e in eps.iter_mut() {
+                power *= r2;
+                *e += weight * power;
+            }
+        }
+    }
+    let q = 0.25 / (x * x);
+    let mut coefficient = 1.0;
+    let mut series = 0.0;
+    for (m, e) in eps.iter().enumerate() {
+        coefficient *= q;
+        let two_m = 2.0 * (m + 1) as f64;
+        series += coefficient / (two_m * (two_m + 1.0)) * e;
+    }
+    // ln x + ln(1 + 1 / beta) = ln(x + lambda).
+    let logarithm = if c > 0.0 {
+        beta.ln_1p() + EULER_GAMMA + (lambda.ln() - EULER_GAMMA - c)
+    } else {
+        (x + lambda).ln()
+    };
+    logarithm + phi - series
+}
+
 /// Love's primitive `F(u, v)` (its mixed derivative is `1 / r`).
 fn primitive(u: f64, v: f64) -> f64 {
     half_primitive(u, v) + half_primitive(v, u)
@@ -526,6 +814,20 @@ struct BranchWeights {
 impl BranchWeights {
     fn new(compliance: f64, lambda: f64, nodes: &[f64], bary: &[f64], x_top: f64) -> Self {
         let gl = GaussLegendre::new(RULE_POINTS);
+        let tail = tail_moments(&gl, x_top / lambda)
+            .iter()
+            .map(|m| m / lambda)
+            .collect();
+        BranchWeights {
+            tail,
+            ..BranchWeights::panels(compliance, lambda, nodes, bary)
+        }
+    }
+
+    /// Everything but the tail (left empty): the product weights, decays and
+    /// singular scalars of the panels.
+    fn panels(compliance: f64, lambda: f64, nodes: &[f64], bary: &[f64]) -> Self {
+        let gl = GaussLegendre::new(RULE_POINTS);
         let n = nodes.len();
         let mut basis = vec![0.0; n];
         let mut product = |len: f64| {
@@ -549,10 +851,6 @@ impl BranchWeights {
             .iter()
             .map(|(t, w)| w * (t - 0.5) * (0.5 - t).ln())
             .sum();
-        let tail = tail_moments(&gl, x_top / lambda)
-            .iter()
-            .map(|m| m / lambda)
-            .collect();
         BranchWeights {
             compliance,
             unit,
@@ -562,7 +860,7 @@ impl BranchWeights {
             decay_half: (-0.5 / lambda).exp(),
             singular_start,
             singular_end,
-            tail,
+            tail: Vec::new(),
         }
     }
 }
@@ -602,6 +900,21 @@ fn tail_moments(gl: &GaussLegendre, beta: f64) -> Vec<f64> {
     mu
 }
 
+/// The Gauss–Legendre nodes of a panel on `[0, 1]` and their barycentric weights.
+fn panel_nodes() -> (Vec<f64>, Vec<f64>) {
+    let gl = GaussLegendre::new(PANEL_NODES);
+    let nodes: Vec<f64> = gl.nodes.iter().map(|x| 0.5 * (1.0 + x)).collect();
+    let bary: Vec<f64> = (0..nodes.len())
+        .map(|m| {
+            1.0 / (0..nodes.len())
+                .filter(|&j| j != m)
+                .map(|j| nodes[m] - nodes[j])
+                .product::<f64>()
+        })
+        .collect();
+    (nodes, bary)
+}
+
 /// The branch terms `sum_k J_k M_k` of every row, in cell units.
 struct BranchTerms {
     nx: usize,
@@ -618,16 +931,7 @@ impl BranchTerms {
     fn new(nx: usize, ny: usize, creeping: &[(f64, f64)]) -> Self {
         let n_lo = nx - 1;
         let x_top = n_lo.max(ny).max(4);
-        let gl = GaussLegendre::new(PANEL_NODES);
-        let nodes: Vec<f64> = gl.nodes.iter().map(|x| 0.5 * (1.0 + x)).collect();
-        let bary: Vec<f64> = (0..nodes.len())
-            .map(|m| {
-                1.0 / (0..nodes.len())
-                    .filter(|&j| j != m)
-                    .map(|j| nodes[m] - nodes[j])
-                    .product::<f64>()
-            })
-            .collect();
+        let (nodes, bary) = panel_nodes();
         let branches = creeping
             .par_iter()
             .map(|&(c, lambda)| BranchWeights::new(c, lambda, &nodes, &bary, x_top as f64))
@@ -1168,5 +1472,363 @@ mod tests {
         assert!(message(&ok, 1.0, 3, -1.0).starts_with("velocity"));
         assert!(message(&ok, 1.0, 0, 1.0).starts_with("grid"));
         assert!(ok.validate().is_ok());
+    }
+
+    // ---- Line contacts (plane strain) ----
+
+    use crate::body::line::{homogeneous_line_kernel, strip_displacement};
+
+    /// `(1 / lambda) int_0^inf exp(-u / lambda) g(X + u) du` with the strip kernel
+    /// `g = strip_displacement(., 1, reference)` of a unit cell, by adaptive
+    /// Gauss–Legendre: pieces graded geometrically from `u = 0` (the weight's
+    /// scale lambda, the logarithm's scale 1) and toward the strip's edges `X + u =
+    /// -+1/2` (log-singular slopes), cut at `60 lambda` (`exp(-60)` = 9e-27).
+    fn line_brute_force(x: f64, lambda: f64, reference: f64) -> f64 {
+        let gl = GaussLegendre::new(20);
+        let f =
+            move |u: f64| (-u / lambda).exp() / lambda * strip_displacement(x + u, 1.0, reference);
+        let end = 60.0 * lambda;
+        let mut breaks = vec![0.0, end];
+        let mut t = 1e-3 * lambda.min(1.0);
+        while t < end {
+            breaks.push(t);
+            t *= 2.0;
+        }
+        for edge in [-0.5, 0.5] {
+            let u = edge - x;
+            if u > 0.0 && u < end {
+                breaks.push(u);
+                for k in 1..45 {
+                    let d = 0.5f64.powi(k).min(0.25 * u);
+                    breaks.push(u - d);
+                    breaks.push(u + d);
+                }
+            }
+        }
+        breaks.retain(|&b| (0.0..=end).contains(&b));
+        breaks.sort_by(f64::total_cmp);
+        breaks.dedup();
+        let mut sum = 0.0;
+        for p in breaks.windows(2) {
+            let whole = gl.integrate(p[0], p[1], f);
+            sum += adaptive(&gl, &f, p[0], p[1], whole, 1e-17, 40);
+        }
+        sum
+    }
+
+    fn line_at(k: &[f64], nx: usize, di: i64) -> f64 {
+        k[(di + nx as i64 - 1) as usize]
+    }
+
+    /// The worst error of the line kernel of one branch (J_g = 0, J_1 = 1, cell
+    /// `cell`) against the brute force at `offsets`, over the kernel's peak.
+    fn line_brute_force_error(
+        nx: usize,
+        cell: f64,
+        lambda: f64,
+        reference: f64,
+        offsets: &[i64],
+        tol: f64,
+    ) -> f64 {
+        let s = series(0.0, &[(1.0, 1.0)]);
+        let k = steady_sliding_line_kernel(&s, cell, nx, lambda * cell, reference).unwrap();
+        let peak = max_abs(&k);
+        let mut worst = 0.0f64;
+        for &di in offsets {
+            let got = line_at(&k, nx, di);
+            let want = cell * line_brute_force(di as f64, lambda, reference / cell);
+            let err = (got - want).abs() / peak;
+            worst = worst.max(err);
+            assert!(
+                err < tol,
+                "nx {nx} lambda {lambda} di {di}: {got} vs {want}, {err:.1e}"
+            );
+        }
+        worst
+    }
+
+    #[test]
+    fn line_kernel_matches_brute_force_for_every_creep_length() {
+        let offsets: Vec<i64> = (-8..=8).collect();
+        let mut worst = 0.0f64;
+        for lambda in [1e-6, 1e-4, 0.003, 0.1, 0.5, 1.0, 7.0, 300.0, 1e4, 1e6, 1e9] {
+            let e = line_brute_force_error(9, 1.0, lambda, 20.0, &offsets, 1e-12);
+            eprintln!("line brute force lambda {lambda:e}: {e:.2e} of the peak");
+            worst = worst.max(e);
+        }
+        // Another cell and datum.
+        for lambda in [0.02, 3.0, 5e3] {
+            worst = worst.max(line_brute_force_error(
+                5,
+                0.25,
+                lambda,
+                0.1,
+                &[-4, -1, 0, 1, 4],
+                1e-12,
+            ));
+        }
+        eprintln!("line brute force: worst {worst:.2e} of the peak");
+    }
+
+    #[test]
+    fn line_kernel_far_offsets_match_brute_force() {
+        // The far tail |X| >> l of a 2,000-cell grid (the recursion runs longest,
+        // downstream points carry the wake) and |X| << l.
+        let offsets = [-1999, -1000, -50, -2, 0, 3, 50, 1000, 1999];
+        let mut worst = 0.0f64;
+        for lambda in [0.01, 3.0, 1e5] {
+            let e = line_brute_force_error(2000, 1.0, lambda, 50.0, &offsets, 1e-12);
+            eprintln!("line far offsets lambda {lambda:e}: {e:.2e} of the peak");
+            worst = worst.max(e);
+        }
+    }
+
+    /// `(1 / pi) Re int_0^inf (2 J(k) / k) (2 sin(k / 2) / k) (e^{ikX} - e^{ikX'}) dk`
+    /// (cell units) with `J` from `surface_compliance`: composite Gauss–Legendre,
+    /// geometric pieces below k = 1, pieces shorter than a quarter period of the
+    /// oscillation above, cut at `k_max`.
+    fn line_fourier_difference(
+        body: &ViscoelasticBody,
+        v: f64,
+        x: f64,
+        x2: f64,
+        k_max: f64,
+    ) -> f64 {
+        let gl = GaussLegendre::new(16);
+        let f = |k: f64| {
+            let j = body.surface_compliance(k, v).unwrap();
+            // e^{ikX} - e^{ikX'} without cancellation at small k.
+            let (a, b) = (0.5 * k * (x + x2), 0.5 * k * (x - x2));
+            let diff = realfft::num_complex::Complex::new(
+                -2.0 * a.sin() * b.sin(),
+                2.0 * a.cos() * b.sin(),
+            );
+            let strip = if k < 1e-4 {
+                1.0 - k * k / 24.0
+            } else {
+                2.0 * (0.5 * k).sin() / k
+            };
+            (j * 2.0 / k * strip * diff).re / PI
+        };
+        let mut sum = 0.0;
+        let mut lo = 1e-12;
+        sum += gl.integrate(0.0, lo, f);
+        while lo < 1.0 {
+            let hi = (2.0 * lo).min(1.0);
+            sum += gl.integrate(lo, hi, f);
+            lo = hi;
+        }
+        let step = 0.5 * PI / (x.abs().max(x2.abs()) + 1.0);
+        let mut k = 1.0;
+        while k < k_max {
+            sum += gl.integrate(k, k + step, f);
+            k += step;
+        }
+        sum
+    }
+
+    #[test]
+    fn line_kernel_differences_match_the_fourier_route() {
+        let nx = 8;
+        let mut worst = 0.0f64;
+        for lambda in [0.2, 1.0, 30.0, 1e4] {
+            let body = ViscoelasticBody {
+                creep: series(0.0, &[(1.0, 2.0)]),
+                poisson: 0.3,
+                references: Vec::new(),
+            };
+            let v = lambda / 2.0;
+            let k = steady_sliding_line_kernel(&body.creep, 1.0, nx, v, 7.0).unwrap();
+            let peak = max_abs(&k);
+            for (x, x2) in [(1, 0), (-1, 0), (-3, 2), (5, -5), (-7, 7)] {
+                let got = line_at(&k, nx, x) - line_at(&k, nx, x2);
+                let want = line_fourier_difference(&body, v, x as f64, x2 as f64, 2e4);
+                let err = (got - want).abs() / peak;
+                worst = worst.max(err);
+                assert!(
+                    err < 1e-11,
+                    "lambda {lambda} ({x}, {x2}): {got} vs {want}, {err:.1e}"
+                );
+            }
+        }
+        eprintln!("line kernel vs Fourier route: worst {worst:.2e} of the peak");
+    }
+
+    #[test]
+    fn line_kernel_speed_limits() {
+        let (cell, nx, reference) = (0.5, 10, 30.0);
+        let s = series(0.3, &[(0.5, 2.0), (0.2, 0.01), (0.4, f64::INFINITY)]);
+        let elastic = homogeneous_line_kernel(1.0, cell, nx, reference);
+        let peak = max_abs(&elastic);
+        let body = ViscoelasticBody {
+            creep: s.clone(),
+            poisson: 0.3,
+            references: Vec::new(),
+        };
+        // V = 0: relaxed (1.0, the frozen branch never creeps); V = inf: glassy.
+        for (v, j) in [(0.0, 1.0), (f64::INFINITY, 0.3)] {
+            match body.line_kernel(cell, nx, v, reference).unwrap() {
+                SurfaceKernel::Even { quadrant, nx: n } => {
+                    assert_eq!((n, quadrant.len()), (nx, nx));
+                    for d in 0..nx {
+                        assert!(
+                            (quadrant[d] - j * elastic[d]).abs() < 1e-14 * peak,
+                            "V {v} d {d}"
+                        );
+                    }
+                }
+                other => panic!("V {v}: {other:?}"),
+            }
+        }
+        match body.line_kernel(cell, nx, 1.0, reference).unwrap() {
+            SurfaceKernel::EvenInY { half, nx: n } => assert_eq!((n, half.len()), (nx, 2 * nx - 1)),
+            other => panic!("{other:?}"),
+        }
+        // Near the limits through the quadrature. lambda = 1e-9 cell: first order
+        // N = I + lambda I', I' = ln|X + 1/2| - ln|X - 1/2|.
+        let one = series(0.3, &[(0.7, 1.0)]);
+        let lam = 1e-9;
+        let k = steady_sliding_line_kernel(&one, cell, nx, lam * cell, reference).unwrap();
+        let mut err = 0.0f64;
+        for di in -(nx as i64 - 1)..nx as i64 {
+            let x = di as f64;
+            let slope = ((x + 0.5).abs() / (x - 0.5).abs()).ln();
+            let want = elastic[di.unsigned_abs() as usize] - 2.0 * cell / PI * 0.7 * lam * slope;
+            err = err.max((line_at(&k, nx, di) - want).abs() / peak);
+        }
+        eprintln!("line lambda = 1e-9 against J_r g + first order: {err:.2e} of the peak");
+        assert!(err < 1e-14, "{err}");
+        // lambda = 1e12 windows and beyond 1e100 cells: J_g g plus the level
+        // (2 h / pi) J_k (ln(L / (h lambda)) + gamma), the neglected terms of order
+        // (X / lambda) ln(lambda / X).
+        for (lam, tol) in [
+            (1e13, 1e-10),
+            (1e60, 1e-14),
+            (1e99, 1e-14),
+            (1e101, 1e-14),
+            (1e250, 1e-14),
+        ] {
+            let k = steady_sliding_line_kernel(&one, cell, nx, lam * cell, reference).unwrap();
+            let level = 2.0 * cell / PI * 0.7 * ((reference / (cell * lam)).ln() + EULER_GAMMA);
+            let mut err = 0.0f64;
+            for di in -(nx as i64 - 1)..nx as i64 {
+                let want = 0.3 * elastic[di.unsigned_abs() as usize] + level;
+                err = err.max((line_at(&k, nx, di) - want).abs() / max_abs(&k));
+            }
+            eprintln!("line lambda = {lam:e}: {err:.2e} of the peak from J_g g + level");
+            assert!(err < tol, "lambda {lam}: {err}");
+        }
+        // Relaxed side: 1e-90 and 1e-101 cells.
+        for lam in [1e-90, 1e-101] {
+            let k = steady_sliding_line_kernel(&one, cell, nx, lam * cell, reference).unwrap();
+            for di in -(nx as i64 - 1)..nx as i64 {
+                let want = elastic[di.unsigned_abs() as usize];
+                assert!(
+                    (line_at(&k, nx, di) - want).abs() < 1e-14 * peak,
+                    "{lam} {di}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn line_kernel_branches_superpose() {
+        let (cell, nx, v, reference) = (0.3, 7, 2.0, 4.0);
+        let all = series(
+            0.2,
+            &[
+                (0.3, 1e-120),
+                (0.5, 0.4),
+                (0.7, 1e120),
+                (0.9, f64::INFINITY),
+            ],
+        );
+        let k = steady_sliding_line_kernel(&all, cell, nx, v, reference).unwrap();
+        let elastic = homogeneous_line_kernel(1.0, cell, nx, reference);
+        let creeping =
+            steady_sliding_line_kernel(&series(0.0, &[(0.5, 0.4)]), cell, nx, v, reference)
+                .unwrap();
+        let lam = v * 1e120 / cell;
+        let level = 2.0 * cell / PI * 0.7 * ((reference / (cell * lam)).ln() + EULER_GAMMA);
+        let peak = max_abs(&k);
+        for di in -(nx as i64 - 1)..nx as i64 {
+            let want =
+                0.5 * elastic[di.unsigned_abs() as usize] + line_at(&creeping, nx, di) + level;
+            assert!((line_at(&k, nx, di) - want).abs() < 1e-14 * peak, "{di}");
+        }
+    }
+
+    #[test]
+    fn line_kernel_tail_agrees_with_the_recursion() {
+        // The same offsets from a small grid (tail from X = 4) and a wide one
+        // (recursion through them from X = 80).
+        let mut worst = 0.0f64;
+        for lambda in [1e-6, 0.003, 0.7, 12.0, 1e4, 1e9] {
+            let s = series(0.1, &[(1.0, 1.0)]);
+            let small = steady_sliding_line_kernel(&s, 1.0, 3, lambda, 9.0).unwrap();
+            let wide = steady_sliding_line_kernel(&s, 1.0, 81, lambda, 9.0).unwrap();
+            let peak = max_abs(&wide);
+            for di in -2i64..=2 {
+                let (a, b) = (line_at(&small, 3, di), line_at(&wide, 81, di));
+                worst = worst.max((a - b).abs() / peak);
+                assert!(
+                    (a - b).abs() < 1e-13 * peak,
+                    "lambda {lambda} {di}: {a} vs {b}"
+                );
+            }
+        }
+        eprintln!("line tail vs recursion: worst {worst:.2e} of the peak");
+    }
+
+    #[test]
+    fn line_kernel_bad_input_names_the_field() {
+        let message = |s: &CreepSeries, cell: f64, nx: usize, v: f64, reference: f64| {
+            steady_sliding_line_kernel(s, cell, nx, v, reference)
+                .unwrap_err()
+                .to_string()
+        };
+        let ok = series(0.1, &[(0.2, 1.0)]);
+        assert!(message(&series(-0.1, &[]), 1.0, 3, 1.0, 1.0).starts_with("creep.glassy"));
+        assert!(message(&series(0.1, &[(-1.0, 1.0)]), 1.0, 3, 1.0, 1.0)
+            .starts_with("creep.branches[0].compliance"));
+        assert!(message(&series(0.1, &[(0.2, 0.0)]), 1.0, 3, 1.0, 1.0)
+            .starts_with("creep.branches[0].retardation_time"));
+        assert!(
+            message(&series(0.0, &[(1.0, 1.0)]), 1.0, 3, f64::INFINITY, 1.0)
+                .starts_with("velocity")
+        );
+        assert!(message(&ok, 0.0, 3, 1.0, 1.0).starts_with("cell"));
+        assert!(message(&ok, f64::INFINITY, 3, 1.0, 1.0).starts_with("cell"));
+        assert!(message(&ok, 1.0, 3, -1.0, 1.0).starts_with("velocity"));
+        assert!(message(&ok, 1.0, 3, f64::NAN, 1.0).starts_with("velocity"));
+        assert!(message(&ok, 1.0, 0, 1.0, 1.0).starts_with("grid"));
+        assert!(message(&ok, 1.0, 3, 1.0, 0.0).starts_with("reference = 0"));
+        assert!(message(&ok, 1.0, 3, 1.0, f64::NAN).starts_with("reference"));
+        assert!(message(&ok, 1.0, 3, 1.0, f64::INFINITY).starts_with("reference"));
+        let body = ViscoelasticBody {
+            creep: ok,
+            poisson: 0.3,
+            references: Vec::new(),
+        };
+        let e = body.line_kernel(1.0, 3, 1.0, -2.0).unwrap_err().to_string();
+        assert!(e.starts_with("reference"), "{e}");
+        // One cell works.
+        assert!(body.line_kernel(1.0, 1, 1.0, 2.0).is_ok());
+    }
+
+    #[test]
+    #[ignore = "timing: run with --ignored --nocapture"]
+    fn line_kernel_timing_4096_cells_10_branches() {
+        let branches: Vec<(f64, f64)> = (0..10).map(|k| (0.1, 10f64.powi(k - 4))).collect();
+        let s = series(0.1, &branches);
+        for _ in 0..5 {
+            let start = std::time::Instant::now();
+            let k = steady_sliding_line_kernel(&s, 1.0, 4096, 1.0, 1e4).unwrap();
+            eprintln!(
+                "line kernel, 4096 cells, 10 branches: {:?}",
+                start.elapsed()
+            );
+            assert_eq!(k.len(), 8191);
+        }
     }
 }
