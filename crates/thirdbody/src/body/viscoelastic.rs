@@ -137,7 +137,7 @@
 //! (4^m 2m (2m + 1))` with `beta = X_t / lambda`, `phi(beta) = int_0^inf exp(-v)
 //! dv / (beta + v)` (`= e^beta E_1(beta)`: the exponential average of `ln` is `ln
 //! X + phi`) and `eps_n(beta) = int_0^inf exp(-v) (beta / (beta + v))^n dv` (the
-//! average of `X^-n`), all by Gauss–Legendre on the pieces of [`tail_moments`].
+//! average of `X^-n`), all by Gauss–Legendre on the pieces of `tail_moments`.
 //! The cost is one strip integral per node (`24 nx`, shared by the branches) and
 //! one dot product per panel and branch.
 
