@@ -7,6 +7,8 @@
 //! (equation (H) below), evaluated for the bilinear interpolant of the cell-centre
 //! pressures. It is the independent side of the energy balance `mu Q V = D`: the
 //! solver's friction comes from the slider's slope, this from the body's loss.
+//! [`line_dissipated_force`] is the same for a line contact (plane strain, the
+//! loss per unit length; its derivation and method are in its documentation).
 //!
 //! # Derivation
 //!
