@@ -16,6 +16,7 @@ pub mod line;
 pub(crate) mod quadrature;
 pub mod solid;
 pub mod stack;
+pub(crate) mod stack_line;
 #[cfg(test)]
 pub(crate) mod two_layer_oracle;
 pub mod viscoelastic;

@@ -126,16 +126,15 @@ impl BodyModel for StackBody {
 
     fn line_kernel(
         &self,
-        _cell: f64,
-        _nx: usize,
+        cell: f64,
+        nx: usize,
         _velocity: f64,
-        _reference: f64,
+        reference: f64,
     ) -> Result<super::SurfaceKernel> {
-        Err(crate::error::Error::invalid(
-            "slider.shape",
-            "a line contact",
-            "a point contact on a layered body (its line kernel is not built yet)",
-        ))
+        Ok(super::SurfaceKernel::Even {
+            quadrant: super::stack_line::line_kernel(&self.stack, cell, nx, reference)?,
+            nx,
+        })
     }
 
     fn kernel_depends_on_velocity(&self) -> bool {
@@ -321,14 +320,14 @@ fn thick_top_kernel(
 
 /// The long-wave terms `c0 e^{-kd} + beta k d e^{-kd}` (module doc), lengths in cells.
 #[derive(Debug, Clone, Copy)]
-struct LongWaveSplit {
-    c0: f64,
-    beta: f64,
-    d: f64,
+pub(super) struct LongWaveSplit {
+    pub(super) c0: f64,
+    pub(super) beta: f64,
+    pub(super) d: f64,
 }
 
 impl LongWaveSplit {
-    fn new(stack: &Stack) -> Result<Self> {
+    pub(super) fn new(stack: &Stack) -> Result<Self> {
         let total: f64 = stack.layers.iter().map(|p| p.thickness).sum();
         if stack.layers.is_empty() {
             return Ok(LongWaveSplit {
@@ -407,17 +406,17 @@ fn corner_sums(nx: usize, ny: usize, f: impl Fn(f64, f64) -> f64 + Sync) -> Vec<
 
 /// `q(k) = C W(k) R(k) / k` (module doc) tabulated on `[0, k_max]`, lengths in cells.
 #[derive(Debug, Clone)]
-struct Remainder {
+pub(super) struct Remainder {
     /// Panels in `k` on `[0, knee]`.
     near: ChebyshevPanels,
     /// Panels in `ln k` on `[knee, k_max]`.
     far: ChebyshevPanels,
-    knee: f64,
+    pub(super) knee: f64,
     /// Beyond it q is zero to rounding.
-    k_max: f64,
+    pub(super) k_max: f64,
     /// Centre and width of the band edge (`Resolution::split`).
-    split: f64,
-    split_width: f64,
+    pub(super) split: f64,
+    pub(super) split_width: f64,
 }
 
 const DEGREE: usize = 16;
@@ -425,7 +424,7 @@ const DEGREE: usize = 16;
 const LOG_PANEL: f64 = 0.1;
 
 impl Remainder {
-    fn new(
+    pub(super) fn new(
         stack: &Stack,
         split: &LongWaveSplit,
         compliance: f64,
@@ -481,13 +480,13 @@ impl Remainder {
     }
 
     /// The long-wave band's share `W_1(k)` (an even low-pass like `W`).
-    fn long_share(&self, k: f64) -> f64 {
+    pub(super) fn long_share(&self, k: f64) -> f64 {
         let (c, w) = (self.split, self.split_width);
         0.5 * (libm::erfc((k - c) / w) - libm::erfc((k + c) / w))
     }
 
     /// The lattice band's spectrum: `q (1 - W_1)`.
-    fn q_lattice(&self, k: f64) -> f64 {
+    pub(super) fn q_lattice(&self, k: f64) -> f64 {
         if k > 2.0 * self.split + 6.0 * self.split_width {
             self.q(k)
         } else {
@@ -584,7 +583,7 @@ impl Remainder {
         kernel
     }
 
-    fn q(&self, k: f64) -> f64 {
+    pub(super) fn q(&self, k: f64) -> f64 {
         if k <= self.knee {
             self.near.eval(k)
         } else if k <= self.k_max {
