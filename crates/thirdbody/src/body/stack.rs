@@ -264,7 +264,7 @@ impl StackBody {
         let split = LongWaveSplit::new(&scaled)?;
         let mut kernel = closed_form_quadrant(&split, nx, ny);
         let love = homogeneous_surface_kernel_quadrant(top, 1.0, nx, ny);
-        let remainder = Remainder::new(&scaled, &split, compliance, resolution)?;
+        let remainder = Remainder::new(&scaled, &split, compliance, resolution, 1.0)?;
         let fft = remainder.lattice_kernel(nx, ny, resolution);
         let long = remainder.long_wave_kernel(nx, ny);
         for (((k, l), r), g) in kernel.iter_mut().zip(&love).zip(&fft).zip(&long) {
@@ -429,12 +429,16 @@ impl Remainder {
         split: &LongWaveSplit,
         compliance: f64,
         resolution: Resolution,
+        floor: f64,
     ) -> Result<Self> {
         let w = resolution.width;
         let centre = 5.6 * w;
         let k_max = centre + 5.6 * w;
-        // Below the knee R / k is a smooth function of k (its scale is 1 / d at most).
-        let knee = (0.05 / split.d).min(0.05);
+        // Below the knee R / k is a smooth function of k (its scale is 1 / d at most,
+        // or `floor` times that: a stiff layer on a much softer base restrains the
+        // base's surface in-plane on the length E_layer / E_base times its own
+        // thickness, a change of A at k far below 1 / d).
+        let knee = (0.05 / split.d).min(0.05) * floor;
         let solver = LayeredSolver::new(stack)?;
         let value = |solver: &mut LayeredSolver, k: f64| {
             let low_pass = 0.5 * (libm::erfc((k - centre) / w) - libm::erfc((k + centre) / w));
