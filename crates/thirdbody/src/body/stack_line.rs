@@ -355,8 +355,8 @@ mod tests {
     /// The kernel at the offset `x` (cells of width `h`) by direct quadrature of its
     /// Fourier integral, written apart from the method above: with the Frullani
     /// integral `int_0^inf (e^{-a k} - cos(L k)) / k dk = ln(L / a)` for the datum,
-    /// `G(x) = J_top g(x) + (2 h / pi) (J0 - J_top) ln(L / a)
-    ///   + (1 / pi) int_0^inf [2 (J(k) - J_top) S(k) cos(k x) - 2 (J0 - J_top) h e^{-a k}] / k dk`,
+    /// `G(x) = J_top g(x) + (2 h / pi) (J0 - J_top) ln(L / a) + (1 / pi) int_0^inf
+    /// [2 (J(k) - J_top) S(k) cos(k x) - 2 (J0 - J_top) h e^{-a k}] / k dk`, with
     /// `g` the half-space's strip kernel of [`super::super::line`], `J0` the base's
     /// compliance (0 on a rigid base), `a` the stack's thickness; both parts of the
     /// integrand decay exponentially.
