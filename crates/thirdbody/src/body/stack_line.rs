@@ -28,7 +28,12 @@
 //!   on a rigid base (`c0 = -1`);
 //! - `C R / k` is bounded and smooth (`R(0) = R'(0) = 0`), tabulated with the
 //!   low-pass `W` of the surface kernel (its short waves move a cell centre by about
-//!   `exp(-(w h / 4)^2)`, [`super::stack`]), and split by the same `W_1`:
+//!   `exp(-(w h / 4)^2)`, [`super::stack`]); the table's knee, below which it is a
+//!   polynomial in k, is lowered by the stack's stiffness contrast `E_min / E_max`
+//!   (a stiff layer on a soft base restrains the base's surface in-plane and
+//!   changes `A` on wavenumbers that far below `1 / d`). It is split by the same
+//!   `W_1`, normalised to `W_1(0) = 1` so that the lattice band has no share of the
+//!   longest waves:
 //!   - long waves, `W_1 q` (`k h < 0.2`), by Gauss–Legendre panels in k (geometric
 //!     above the knee, narrower than 4 / X), for groups of offsets whose largest X
 //!     at most doubles from one group to the next; `cos(k X)` along a group by
@@ -42,6 +47,17 @@
 //!
 //! A stack of the half-space's material has `c0 = beta = 0`, `R = 0`: its kernel is
 //! `J strip_displacement` by construction.
+//!
+//! Accuracy (tests below): direct adaptive quadrature of the Fourier integral (the
+//! datum by a Frullani integral) agrees to 2.1e-11 of the peak for coatings 10 to
+//! 30 times stiffer and 10 to 100 times softer than the substrate, layers on a
+//! bonded and a frictionless rigid base, three-layer stacks and a coating 1e4
+//! cells thick, and to 9e-12 for stacks of one to eight layers 0.01 to 1e6 cells
+//! thick with E from 1e-3 to 1e3; a finer resolution moves stacks down to 1e-4
+//! cells by 5.5e-10 at most (rounding: with contrasts of 1e6 the closed forms cancel
+//! by up to five digits). Cost: 4,096 cells in 19 ms for one layer on a half-space,
+//! 24 ms for eight layers, 40 ms for a 1e6-cell-thick layer 1e3 times softer than
+//! its base (release, two cores).
 
 use std::f64::consts::PI;
 
@@ -605,11 +621,13 @@ mod tests {
     #[test]
     fn a_thin_layer_on_a_rigid_base_is_a_winkler_foundation() {
         // A layer of thickness t far thinner than the loaded cell: a bonded one is in
-        // uniaxial strain, w = p t (1 + nu) (1 - 2 nu) / ((1 - nu) E) (Johnson,
-        // Contact Mechanics, 1985, section 5.9, the compressible thin layer on a
-        // rigid base); a frictionless one expands freely in x (no shear on either
-        // face, so no in-plane force) and is in plane strain along y, w = p t (1 -
-        // nu^2) / E. Unloaded cells do not move.
+        // uniaxial strain, w = p t / M with the constrained modulus
+        // M = (1 - nu) E / ((1 + nu) (1 - 2 nu)) (the compressible thin layer bonded
+        // to a rigid base of Johnson, Contact Mechanics, 1985, ch. 5, whose section
+        // number was not checked here; the same uniaxial strain is the long-wave
+        // limit in `layered`); a frictionless one expands freely in x (no shear on
+        // either face, so no in-plane force) and is in plane strain along y,
+        // w = p t (1 - nu^2) / E. Unloaded cells do not move.
         let m = elastic(2.0, 0.3);
         let (e, nu) = (m.young, m.poisson);
         for (contact, winkler) in [
