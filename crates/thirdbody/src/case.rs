@@ -314,7 +314,7 @@ impl Case {
                  cells = N",
             ));
         }
-        if nx < crate::grid::MIN_CELLS || nx > 1 << 22 {
+        if !(crate::grid::MIN_CELLS..=1 << 22).contains(&nx) {
             return Err(Error::invalid(
                 "grid.cells",
                 nx,

@@ -67,6 +67,11 @@ pub struct KernelSpectrum {
     values: SpectrumValues,
     /// The kernel at zero offset (the self-influence of a cell).
     self_coefficient: f64,
+    /// The constant the kernel was lowered by before its spectrum was built (a
+    /// line contact's kernel is defined up to a constant, its datum: the body's
+    /// displacement is this spectrum's product plus the shift times the sum of the
+    /// field); 0 for a point contact's.
+    datum_shift: f64,
 }
 
 /// The stored values of a kernel spectrum.
@@ -164,6 +169,18 @@ impl KernelSpectrum {
     /// The kernel value at zero offset.
     pub fn self_coefficient(&self) -> f64 {
         self.self_coefficient
+    }
+
+    /// The constant the kernel was lowered by (a line contact's datum, see the
+    /// field); 0 unless set by [`Self::with_datum_shift`].
+    pub fn datum_shift(&self) -> f64 {
+        self.datum_shift
+    }
+
+    /// The same spectrum recording that its kernel was lowered by `shift`.
+    pub fn with_datum_shift(mut self, shift: f64) -> Self {
+        self.datum_shift = shift;
+        self
     }
 }
 
@@ -419,6 +436,7 @@ impl ConvolutionPlan {
             px: self.px,
             py: self.py,
             self_coefficient: quadrant[0],
+            datum_shift: 0.0,
             values: SpectrumValues::Even {
                 values: None,
                 quadrant: Arc::new(quadrant),
@@ -521,6 +539,7 @@ impl ConvolutionPlan {
             py,
             values: SpectrumValues::General(values),
             self_coefficient,
+            datum_shift: 0.0,
         }
     }
 
@@ -541,6 +560,7 @@ impl ConvolutionPlan {
             py,
             values: SpectrumValues::General(values),
             self_coefficient,
+            datum_shift: 0.0,
         }
     }
 }

@@ -31,6 +31,11 @@ pub struct ContactProblem {
     pub(crate) load: f64,
     /// The sliding speed (a viscoelastic body's kernel and dissipation use it).
     pub(crate) velocity: f64,
+    /// The constant the body's kernel was lowered by (a line contact's datum,
+    /// [`crate::convolution::KernelSpectrum::datum_shift`]): the solution adds it
+    /// times the sum of the cells' pressures to the body's displacement and the
+    /// approach.
+    pub(crate) datum_shift: f64,
     pub(crate) estimate: ContactEstimate,
 }
 
@@ -57,6 +62,7 @@ impl Case {
         let plan = kernels.plan(grid.nx, grid.ny, parallelism);
         let velocity = self.velocity();
         let spectrum = kernels.surface_spectrum(&self.body, grid, &plan, velocity)?;
+        let datum_shift = spectrum.datum_shift();
         let influence = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum))?;
         let n = grid.len();
         let mut shape = vec![0.0; n];
@@ -75,6 +81,7 @@ impl Case {
             slope,
             load: self.loading.normal_load,
             velocity,
+            datum_shift,
             estimate: ContactEstimate::of(self),
         })
     }
@@ -115,6 +122,7 @@ impl ContactProblem {
             slope,
             load: case.loading.normal_load,
             velocity: case.velocity(),
+            datum_shift: 0.0,
             estimate: ContactEstimate::of(case),
         })
     }

@@ -80,3 +80,59 @@ fn hertz_line_contact_half_width_peak_pressure_and_approach() {
         assert!(s.grid.is_line() && m.ny == 1);
     }
 }
+
+/// The datum moves the approach only: `D(L1) - D(L2) = (2 Q / (pi E*)) ln(L1 / L2)`
+/// for any body whose long-wave compliance is `1 / E*` (a line load's displacement
+/// at distance L is `(2 Q / (pi E*)) ln(L / r)`), and the pressure not at all, also
+/// with a datum inside the contact and far beyond it, and on a creeping body whose
+/// relaxed far field lies beyond the window.
+#[test]
+fn the_datum_moves_the_approach_only() {
+    use std::f64::consts::PI;
+    use thirdbody::body::{SolidRheology, ViscoelasticHalfSpace};
+    let q = 1e-3;
+    let elastic = cylinder(q, 512);
+    let mut zener = cylinder(q, 512);
+    zener.body = Body::Viscoelastic(ViscoelasticHalfSpace {
+        rheology: SolidRheology::Zener {
+            glassy_modulus: 10.0,
+            relaxed_modulus: 1.0,
+            relaxation_time: 1.0,
+        },
+        poisson: 0.3,
+    });
+    zener.loading.velocity = Some(3.0);
+    let relaxed_star = 1.0 / (1.0 - 0.09);
+    for base in [elastic, zener] {
+        let solved = |datum: f64| {
+            let mut c = base.clone();
+            c.loading.reference_distance = Some(datum);
+            let tight = SolverParams {
+                tolerance: 1e-13,
+                ..SolverParams::default()
+            };
+            solve(&c, &tight).unwrap()
+        };
+        let reference = solved(1.0);
+        for datum in [1e-4, 1e-2, 1e3, 1e8] {
+            let s = solved(datum);
+            let expected = 2.0 * q / (PI * relaxed_star) * (datum.ln() - 1.0f64.ln());
+            let moved = s.approach - reference.approach;
+            assert!(
+                (moved - expected).abs() < 1e-9 * expected.abs().max(reference.approach),
+                "datum {datum}: {moved} vs {expected}"
+            );
+            let worst = s
+                .pressure
+                .iter()
+                .zip(&reference.pressure)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            let peak = reference.summary().max_pressure;
+            assert!(
+                worst < 1e-9 * peak,
+                "datum {datum}: pressure moved by {worst:e}"
+            );
+        }
+    }
+}

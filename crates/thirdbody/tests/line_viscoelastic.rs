@@ -71,6 +71,7 @@ fn hunter_rigid_cylinder_on_a_standard_linear_solid() {
     let load = std::f64::consts::PI * relaxed_star * A0 * A0 / (4.0 * RADIUS);
     let p0 = 2.0 * load / (std::f64::consts::PI * A0);
     let mut worst = [0.0f64; 4];
+    let mut worst_energy = 0.0f64;
     for row in reference() {
         let case = hunter_case(row.modulus_ratio, row.speed, 4096);
         let s = solve(&case, &SolverParams::default()).unwrap();
@@ -98,12 +99,19 @@ fn hunter_rigid_cylinder_on_a_standard_linear_solid() {
         for (w, e) in worst.iter_mut().zip(errors) {
             *w = w.max(e.abs());
         }
+        let energy = m.dissipation_friction_coefficient / m.friction_coefficient - 1.0;
+        worst_energy = worst_energy.max(energy.abs());
     }
-    eprintln!("worst: width, offset, p_max, mu = {worst:.2e?}");
-    for (name, e) in ["half-width", "offset", "peak pressure", "mu"]
-        .iter()
-        .zip(worst)
-    {
-        assert!(e < 0.01, "{name}: {e:.3e}");
+    eprintln!("worst: width, offset, p_max, mu = {worst:?}; energy balance {worst_energy:.2e}");
+    // Measured on 4096 cells: 7.1e-5, 2.3e-3 (the offset is the small difference of
+    // the two edges), 1.1e-5, 2.0e-6; the energy balance 3.6e-6.
+    for (name, e, tolerance) in [
+        ("half-width", worst[0], 1e-3),
+        ("offset", worst[1], 1e-2),
+        ("peak pressure", worst[2], 1e-3),
+        ("mu", worst[3], 1e-3),
+        ("energy balance", worst_energy, 1e-4),
+    ] {
+        assert!(e < tolerance, "{name}: {e:.3e}");
     }
 }

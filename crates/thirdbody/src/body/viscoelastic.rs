@@ -343,6 +343,14 @@ impl BodyModel for ViscoelasticBody {
     }
 
     fn dissipated_force(&self, grid: &Grid, pressure: &[f64], velocity: f64) -> Result<f64> {
+        if grid.is_line() {
+            return super::hysteresis::line_dissipated_force(
+                &self.creep,
+                velocity,
+                pressure,
+                grid.cell,
+            );
+        }
         super::hysteresis::dissipated_force(
             &self.creep,
             velocity,

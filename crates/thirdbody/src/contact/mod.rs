@@ -719,6 +719,16 @@ fn finish(
     let gap: Vec<f64> = (0..n)
         .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + problem.shape[k] - report.approach)
         .collect();
+    // A line contact's kernel was lowered by a constant (its datum): the body's
+    // displacement and the approach at the case's datum are higher by it times the
+    // sum of the cells' (mean) pressures, load / h; the gap does not change.
+    let lift = if problem.datum_shift == 0.0 {
+        0.0
+    } else {
+        problem.datum_shift * load / grid.cell_measure()
+    };
+    wb.iter_mut().for_each(|w| *w += lift);
+    let approach = report.approach + lift;
     if !p.iter().chain(&gap).all(|v| v.is_finite()) {
         return Err(Error::OutOfRange {
             why: OVERFLOW.into(),
@@ -736,7 +746,7 @@ fn finish(
         shape: problem.shape.clone(),
         shape_slope: problem.slope.clone(),
         dissipated_force,
-        approach: report.approach,
+        approach,
         normal_load: load,
         info: SolveInfo {
             method,

@@ -1,0 +1,182 @@
+//! The paper's third-body layer in a line contact (plane strain). On a rigid base
+//! the rows of the layer are independent, so a line contact is exactly one row of
+//! the semi-analytic rigid-base solution of `tests/common/rigid_base.rs` (the row
+//! ODE along x, shared with the point-contact tests and independent of the
+//! solver), with its leading edge b fixed by the load per unit length. On an
+//! elastic body the solution converges with the grid, and its friction equals the
+//! energy balance's.
+
+mod common;
+
+use common::rigid_base::{brent, Law, RigidBase};
+use thirdbody::*;
+
+const RADIUS: f64 = 1.0;
+const COMPLIANCE: f64 = 0.02;
+const VELOCITY: f64 = 0.01;
+const LOAD: f64 = 2e-4;
+
+fn line_case(layer: Layer, young: f64, cells: usize) -> Case {
+    Case {
+        slider: Slider::Cylinder { radius: RADIUS },
+        body: Body::Homogeneous(Elastic {
+            young,
+            poisson: 0.3,
+        }),
+        layer: Some(layer),
+        loading: Loading {
+            normal_load: LOAD,
+            velocity: Some(VELOCITY),
+            reference_distance: None,
+        },
+        grid: GridSpec {
+            cells: [cells, 1],
+            half_width: None,
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    }
+}
+
+/// The paper's sigmoid law (eq. 11), written out independently of the library.
+fn sigmoid(c0: f64, delta: f64, p0: f64) -> impl Fn(f64) -> f64 {
+    move |p: f64| c0 * (1.0 + delta - 2.0 * delta / (1.0 + (-p / p0).exp()))
+}
+
+struct RowReference {
+    leading_edge: f64,
+    trailing_edge: f64,
+    approach: f64,
+    max_pressure: f64,
+    friction: f64,
+}
+
+/// The row whose load per unit length is `LOAD`.
+fn row_reference(law: &Law) -> RowReference {
+    let base = RigidBase {
+        radius: RADIUS,
+        creep_length: VELOCITY,
+        load: LOAD,
+    };
+    let b = brent(|b| base.row(law, b).load - LOAD, 1e-4, 0.5, 1e-15);
+    let row = base.row(law, b);
+    RowReference {
+        leading_edge: b,
+        trailing_edge: row.trailing_edge,
+        approach: b * b / (2.0 * RADIUS),
+        max_pressure: row.max_pressure,
+        friction: row.moment / (RADIUS * row.load),
+    }
+}
+
+fn errors(case: &Case, reference: &RowReference) -> [f64; 5] {
+    let s = solve(case, &SolverParams::default()).unwrap();
+    let m = s.summary();
+    let h = m.cell_size;
+    [
+        m.max_pressure / reference.max_pressure - 1.0,
+        m.friction_coefficient / reference.friction - 1.0,
+        m.penetration / reference.approach - 1.0,
+        (m.contact_x_max - reference.leading_edge) / h,
+        (m.contact_x_min - reference.trailing_edge) / h,
+    ]
+}
+
+#[test]
+fn a_layer_on_a_rigid_base_is_one_row_of_the_row_solution() {
+    let linear = Layer::maxwell(COMPLIANCE, 1.0, ComplianceLaw::Linear, Integration::Exact);
+    let c = sigmoid(COMPLIANCE, 0.5, 0.005);
+    let nonlinear = Layer::maxwell(
+        COMPLIANCE,
+        1.0,
+        ComplianceLaw::Sigmoid {
+            delta: 0.5,
+            p0: 0.005,
+        },
+        Integration::Exact,
+    );
+    for (name, layer, law) in [
+        (
+            "linear",
+            linear,
+            Law::Linear {
+                compliance: COMPLIANCE,
+            },
+        ),
+        ("sigmoid", nonlinear, Law::Exact(&c)),
+    ] {
+        let reference = row_reference(&law);
+        for cells in [1024, 4096] {
+            let e = errors(&line_case(layer.clone(), 1e9, cells), &reference);
+            eprintln!(
+                "{name} {cells}: p_max {:+.2e}, mu {:+.2e}, D {:+.2e}, edges / h [{:+.2}, {:+.2}]",
+                e[0], e[1], e[2], e[3], e[4]
+            );
+            // Measured at 4096 cells: p_max 7e-10 and 5e-8, mu 5e-8 and 9e-8, D 2e-8
+            // and 3e-8 (linear and sigmoid); the edges within 0.51 cell.
+            let tolerance = if cells == 4096 { 1e-6 } else { 1e-5 };
+            for (what, v) in ["p_max", "mu", "D"].iter().zip(&e[..3]) {
+                assert!(v.abs() < tolerance, "{name} {cells}: {what} {v:e}");
+            }
+            assert!(
+                e[3].abs() < 1.0 && e[4].abs() < 1.0,
+                "{name} {cells}: edges {e:?}"
+            );
+        }
+    }
+}
+
+/// The paper's nonlinear layer on an elastic half-space (E' = 1) in a line contact:
+/// mu, the peak pressure and D converge with the grid (measured: every grid from
+/// 512 to 4096 cells within 1.6e-6 of the finest, the changes at the level of the
+/// edges' placement), and the friction equals the energy balance's (5.9e-9 at
+/// 4096 cells).
+#[test]
+fn the_paper_layer_on_an_elastic_body_converges_with_the_grid() {
+    let layer = Layer::maxwell(
+        COMPLIANCE,
+        1.0,
+        ComplianceLaw::Sigmoid {
+            delta: 0.5,
+            p0: 0.005,
+        },
+        Integration::Exact,
+    );
+    let results: Vec<[f64; 4]> = [512, 1024, 2048, 4096]
+        .iter()
+        .map(|&cells| {
+            let s = solve(
+                &line_case(layer.clone(), 1.0, cells),
+                &SolverParams::default(),
+            )
+            .unwrap();
+            let m = s.summary();
+            eprintln!(
+                "{cells}: mu {:.9e}, mu by energy {:.9e}, p_max {:.9e}, D {:.9e}",
+                m.friction_coefficient,
+                m.dissipation_friction_coefficient,
+                m.max_pressure,
+                m.penetration
+            );
+            [
+                m.friction_coefficient,
+                m.max_pressure,
+                m.penetration,
+                m.dissipation_friction_coefficient,
+            ]
+        })
+        .collect();
+    for k in 0..3 {
+        for r in &results[..3] {
+            let off = (r[k] / results[3][k] - 1.0).abs();
+            assert!(off < 1e-5, "quantity {k}: {off:.2e} from the finest grid");
+        }
+    }
+    let finest = results[3];
+    assert!(
+        (finest[3] / finest[0] - 1.0).abs() < 1e-6,
+        "energy balance {} vs {}",
+        finest[3],
+        finest[0]
+    );
+}

@@ -1,0 +1,92 @@
+//! Coated line contacts (plane strain): a cylinder on a coating bonded to a
+//! half-space, against Hertz's line contact (Johnson, Contact Mechanics, eq.
+//! 4.43-4.45) in the limits where the coating is the substrate's own material, far
+//! thinner than the contact (the substrate's Hertz) or far thicker (the coating's);
+//! between them the contact converges with the grid. The stack's plane-strain
+//! kernel itself is checked against direct quadrature of its transfer function in
+//! `body::stack_line`.
+
+use std::f64::consts::PI;
+use thirdbody::*;
+
+const LOAD: f64 = 1e-3;
+
+fn coated(coating: f64, thickness: f64, cells: usize) -> Case {
+    let material = |young: f64| Elastic {
+        young,
+        poisson: 0.3,
+    };
+    Case {
+        slider: Slider::Cylinder { radius: 1.0 },
+        body: Body::coated(material(coating), thickness, material(1.0)),
+        layer: None,
+        loading: Loading {
+            normal_load: LOAD,
+            velocity: None,
+            reference_distance: None,
+        },
+        grid: GridSpec {
+            cells: [cells, 1],
+            half_width: None,
+            centre: None,
+        },
+        units: Units::Dimensionless,
+    }
+}
+
+/// Hertz's half-width and peak pressure on a half-space of Young's modulus `young`.
+fn hertz(young: f64) -> (f64, f64) {
+    let e_star = young / (1.0 - 0.09);
+    let a = (4.0 * LOAD / (PI * e_star)).sqrt();
+    (a, 2.0 * LOAD / (PI * a))
+}
+
+fn half_width_and_peak(case: &Case) -> (f64, f64) {
+    let m = solve(case, &SolverParams::default()).unwrap().summary();
+    (0.5 * (m.contact_x_max - m.contact_x_min), m.max_pressure)
+}
+
+#[test]
+fn coated_line_contacts_reach_hertz_in_their_limits() {
+    let (a_sub, _) = hertz(1.0);
+    for (name, coating, thickness, young) in [
+        ("own material", 1.0, 0.5 * a_sub, 1.0),
+        ("thin stiff", 10.0, 1e-5 * a_sub, 1.0),
+        ("thin soft", 0.1, 1e-5 * a_sub, 1.0),
+        ("thick stiff", 10.0, 1e4 * a_sub, 10.0),
+        ("thick soft", 0.1, 1e4 * a_sub, 0.1),
+    ] {
+        let (a, p0) = hertz(young);
+        let (half_width, peak) = half_width_and_peak(&coated(coating, thickness, 2048));
+        let errors = (half_width / a - 1.0, peak / p0 - 1.0);
+        eprintln!(
+            "{name}: half-width {:+.2e}, peak {:+.2e}",
+            errors.0, errors.1
+        );
+        assert!(
+            errors.0.abs() < 2e-3 && errors.1.abs() < 2e-3,
+            "{name}: {errors:?}"
+        );
+    }
+}
+
+#[test]
+fn a_coating_as_thick_as_the_contact_converges_with_the_grid() {
+    let (a_sub, _) = hertz(1.0);
+    for coating in [10.0, 0.1] {
+        let results: Vec<(f64, f64)> = [512, 1024, 2048, 4096]
+            .iter()
+            .map(|&cells| half_width_and_peak(&coated(coating, a_sub, cells)))
+            .collect();
+        let finest = results[3];
+        for (k, r) in results.iter().enumerate() {
+            eprintln!(
+                "E1/E2 = {coating}, grid {k}: half-width {:+.2e}, peak {:+.2e} from the finest",
+                r.0 / finest.0 - 1.0,
+                r.1 / finest.1 - 1.0
+            );
+        }
+        let (a, p) = results[2];
+        assert!((a / finest.0 - 1.0).abs() < 1e-3 && (p / finest.1 - 1.0).abs() < 1e-3);
+    }
+}
