@@ -1,11 +1,12 @@
 //! Reading a slider height map from a file: CSV (rows of numbers separated by
 //! commas, one row per y, first row at the smallest y) or NPY (a 2-D float64
-//! array of shape (ny, nx), rows along y). Paths are relative to the case file's
+//! array of shape (ny, nx), rows along y; a 1-D array of n is one row, a line
+//! contact's profile). Paths are relative to the case file's
 //! folder. The heights themselves (finite, rectangular) are checked by the library.
 
 use std::path::Path;
 
-use ndarray::Array2;
+use ndarray::ArrayD;
 use thirdbody::{Error, HeightMap};
 
 /// Loads `file` (resolved against `base`, the case file's folder) with sample
@@ -17,7 +18,8 @@ pub fn load(base: &Path, file: &str, cell_size: f64) -> thirdbody::Result<Height
             "slider.file",
             format!("\"{}\"", path.display()),
             &format!(
-                "a readable CSV (rows of numbers, rows along y) or 2-D float64 NPY file ({})",
+                "a readable CSV (rows of numbers, rows along y) or float64 NPY file, 2-D \
+                 for a map, 1-D for a profile ({})",
                 why.replace('\n', " ")
             ),
         )
@@ -126,8 +128,17 @@ fn check_npy_size(path: &Path) -> Result<(), String> {
 
 fn read_npy(path: &Path) -> Result<(usize, usize, Vec<f64>), String> {
     check_npy_size(path)?;
-    let array: Array2<f64> = ndarray_npy::read_npy(path).map_err(|e| e.to_string())?;
-    let (ny, nx) = array.dim();
+    let array: ArrayD<f64> = ndarray_npy::read_npy(path).map_err(|e| e.to_string())?;
+    let (nx, ny) = match *array.shape() {
+        [n] => (n, 1),
+        [ny, nx] => (nx, ny),
+        ref other => {
+            return Err(format!(
+                "an array of {} dimensions (1 for a profile, 2 for a map)",
+                other.len()
+            ))
+        }
+    };
     // `iter` visits in logical (row-major) order whatever the memory layout.
     Ok((nx, ny, array.iter().copied().collect()))
 }
@@ -135,6 +146,24 @@ fn read_npy(path: &Path) -> Result<(usize, usize, Vec<f64>), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ndarray::{Array1, Array2, Array3};
+
+    #[test]
+    fn a_one_dimensional_npy_is_one_row_and_three_dimensions_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let row = Array1::from_iter((0..5).map(f64::from));
+        ndarray_npy::write_npy(dir.path().join("p.npy"), &row).unwrap();
+        let m = load(dir.path(), "p.npy", 0.5).unwrap();
+        assert_eq!((m.nx, m.ny), (5, 1));
+        assert_eq!(m.heights, vec![0.0, 1.0, 2.0, 3.0, 4.0]);
+        let cube = Array3::<f64>::zeros((2, 2, 2));
+        ndarray_npy::write_npy(dir.path().join("c.npy"), &cube).unwrap();
+        let e = load(dir.path(), "c.npy", 0.5).unwrap_err().to_string();
+        assert!(
+            e.contains("slider.file") && e.contains("3 dimensions"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn csv_rows_run_along_y() {

@@ -21,7 +21,7 @@ use crate::contact::SolverParams;
 use crate::error::{require_positive, Error, Result};
 use crate::layer::rheology::{preset_keys, KeyKind, KeyReader, KeyValue, Preset, PRESETS};
 use crate::layer::{ComplianceLaw, Integration, Layer, Rheology, Table};
-use crate::shape::{HeightMap, Slider};
+use crate::shape::{HeightMap, Profile, Slider};
 use crate::stress::{SectionKind, StressRequest};
 
 /// A parsed and validated case file.
@@ -72,6 +72,7 @@ enum RawShape {
     Ellipsoid,
     HeightMap,
     Cylinder,
+    Profile,
 }
 
 #[derive(Debug, Deserialize)]
@@ -595,12 +596,12 @@ pub fn parse_case_file(
     let loading = section(raw.loading, "loading", "normal_load (> 0)")?;
     let grid = section(raw.grid, "grid", "cells = [nx, ny], each >= 8")?;
     let layer = raw.layer.map(layer).transpose()?;
-    let line = matches!(slider.shape, Some(RawShape::Cylinder));
+    let line = matches!(slider.shape, Some(RawShape::Cylinder | RawShape::Profile));
     if !line {
         unused(
             loading.reference_distance.is_some(),
             "loading.reference_distance",
-            "it is a line contact's datum (slider.shape = \"cylinder\")",
+            "it is a line contact's datum (slider.shape = \"cylinder\" or \"profile\")",
         )?;
     }
     let loading = Loading {
@@ -854,9 +855,28 @@ fn slider_shape(
     let shape = need(
         s.shape,
         "slider.shape",
-        "choose \"sphere\", \"ellipsoid\", \"height_map\" or \"cylinder\"",
+        "choose \"sphere\", \"ellipsoid\", \"height_map\", \"cylinder\" or \"profile\"",
     )?;
     match shape {
+        RawShape::Profile => {
+            let why = "a profile is given by file and cell_size";
+            unused(s.radius.is_some(), "slider.radius", why)?;
+            unused(s.radius_x.is_some(), "slider.radius_x", why)?;
+            unused(s.radius_y.is_some(), "slider.radius_y", why)?;
+            let file = need(
+                s.file,
+                "slider.file",
+                "a profile needs its file (CSV or NPY, one row of heights)",
+            )?;
+            let cell_size = need(
+                s.cell_size,
+                "slider.cell_size",
+                "a profile needs the spacing of its samples (> 0)",
+            )?;
+            Ok(Slider::Profile(Profile::from_map(load_height_map(
+                &file, cell_size,
+            )?)?))
+        }
         RawShape::Cylinder => {
             let why = "a cylinder has only a radius";
             unused(s.radius_x.is_some(), "slider.radius_x", why)?;

@@ -1103,3 +1103,53 @@ fn bad_viscoelastic_substrates_name_the_key() {
         );
     error_naming(&fluid, &["substrate.equilibrium_modulus", "fluid"]);
 }
+
+/// `shape = "profile"` reads one row (or column) of heights through the map loader
+/// and makes a line contact; a 2-D map is refused for it, and one row is refused as
+/// a `height_map`, each naming the key and the other shape.
+#[test]
+fn a_profile_is_one_row_of_heights() {
+    let text = "[slider]\nshape = \"profile\"\nfile = \"p.csv\"\ncell_size = 0.5\n\
+                [substrate]\nyoung = 1.0\npoisson = 0.3\n[loading]\nnormal_load = 1e-3\n\
+                [grid]\ncells = 64\n";
+    let loader = |rows: usize, cols: usize| {
+        move |_: &str, cell_size: f64| -> Result<HeightMap> {
+            Ok(HeightMap {
+                nx: cols,
+                ny: rows,
+                cell_size,
+                heights: (0..rows * cols).map(|k| (k as f64 - 3.0).powi(2)).collect(),
+            })
+        }
+    };
+    for (rows, cols) in [(1, 7), (7, 1)] {
+        let case = parse_case_file(text, &mut loader(rows, cols)).unwrap().case;
+        let Slider::Profile(p) = &case.slider else {
+            panic!("{:?}", case.slider)
+        };
+        assert_eq!((p.cell_size, p.heights.len()), (0.5, 7));
+        assert!(case.slider.is_line());
+        assert_eq!(case.grid.cells, [64, 1]);
+    }
+    let e = parse_case_file(text, &mut loader(3, 4))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("slider.file") && e.contains("height_map"), "{e}");
+    let map = text
+        .replace("\"profile\"", "\"height_map\"")
+        .replace("cells = 64", "cells = [64, 64]");
+    let e = parse_case_file(&map, &mut loader(1, 7))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("slider.file") && e.contains("\"profile\""),
+        "{e}"
+    );
+    let e = parse_case_file(
+        &text.replace("cell_size = 0.5\n", "radius = 1.0\n"),
+        &mut loader(1, 7),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("slider.radius"), "{e}");
+}

@@ -71,5 +71,5 @@ pub use layer::{
 };
 pub use problem::ContactProblem;
 pub use report::Report;
-pub use shape::{HeightMap, Slider};
+pub use shape::{HeightMap, Profile, Slider};
 pub use solution::{Method, Solution, SolveInfo, Summary};

@@ -32,6 +32,88 @@ pub enum Slider {
         /// Radius R.
         radius: f64,
     },
+    /// A profile uniform along y, a line contact (plane strain): heights sampled
+    /// along x, interpolated linearly.
+    Profile(Profile),
+}
+
+/// Heights of a slider uniform along y, sampled along x at spacing `cell_size`,
+/// centred on the origin: `heights[i]` at `x = (i + 1/2 - n/2) h`. Heights are
+/// shifted so that the lowest is zero.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Profile {
+    /// Spacing of the samples.
+    pub cell_size: f64,
+    /// Heights.
+    pub heights: Vec<f64>,
+}
+
+impl Profile {
+    /// The profile of a height map with one row (or one column) of samples; a
+    /// map of several rows and columns is an error naming `slider.file`.
+    pub fn from_map(map: HeightMap) -> Result<Profile> {
+        if map.nx != 1 && map.ny != 1 {
+            return Err(Error::invalid(
+                "slider.file",
+                format!("{} x {} samples", map.ny, map.nx),
+                "one row (or one column) of heights for a profile (a line contact); a \
+                 2-D map is shape = \"height_map\"",
+            ));
+        }
+        Ok(Profile {
+            cell_size: map.cell_size,
+            heights: map.heights,
+        })
+    }
+
+    /// Half the extent over which the profile can be interpolated (between the
+    /// centres of its outermost samples).
+    pub fn half_extent(&self) -> f64 {
+        0.5 * (self.heights.len() as f64 - 1.0) * self.cell_size
+    }
+
+    fn validate(&self) -> Result<()> {
+        require_positive("slider.cell_size", self.cell_size)?;
+        if self.heights.len() < 3 {
+            return Err(Error::invalid(
+                "slider.file",
+                format!("{} samples", self.heights.len()),
+                "a profile of at least 3 samples",
+            ));
+        }
+        if let Some(k) = self.heights.iter().position(|h| !h.is_finite()) {
+            return Err(Error::invalid(
+                "slider.file",
+                format!("{} at sample {k}", self.heights[k]),
+                "finite heights everywhere (no NaN or inf)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Linear interpolation of the height at x; `None` outside.
+    fn height(&self, x: f64) -> Option<f64> {
+        let n = self.heights.len();
+        let u = x / self.cell_size + 0.5 * n as f64 - 0.5;
+        if u < -1e-9 || u > (n - 1) as f64 + 1e-9 {
+            return None;
+        }
+        let i = (u.floor().max(0.0) as usize).min(n - 2);
+        let s = u - i as f64;
+        Some((1.0 - s) * self.heights[i] + s * self.heights[i + 1])
+    }
+
+    /// The mean slope of the interpolated profile over `[x - width/2, x + width/2]`
+    /// (clamped to the profile), as [`HeightMap`]'s: the exact slope of the
+    /// interpolant under each cell; `None` outside.
+    fn mean_slope(&self, x: f64, width: f64) -> Option<f64> {
+        let e = self.half_extent();
+        let (lo, hi) = ((x - 0.5 * width).max(-e), (x + 0.5 * width).min(e));
+        if hi <= lo {
+            return None;
+        }
+        Some((self.height(hi)? - self.height(lo)?) / (hi - lo))
+    }
 }
 
 /// Heights of the slider surface on a regular grid centred on the origin,
@@ -64,7 +146,8 @@ impl HeightMap {
             return Err(Error::invalid(
                 "slider.file",
                 format!("{} x {} samples", self.ny, self.nx),
-                "a rectangular map of at least 2 x 2 samples",
+                "a rectangular map of at least 2 x 2 samples (one row of heights is a \
+                 line contact's slider.shape = \"profile\")",
             ));
         }
         if let Some(k) = self.heights.iter().position(|h| !h.is_finite()) {
@@ -134,6 +217,7 @@ impl Slider {
             }
             Slider::HeightMap(m) => m.validate(),
             Slider::Cylinder { radius } => require_positive("slider.radius", *radius),
+            Slider::Profile(p) => p.validate(),
         }
     }
 
@@ -142,7 +226,7 @@ impl Slider {
     /// [`Geometry::Line`] datum.
     pub fn geometry(&self, datum: f64) -> Geometry {
         match self {
-            Slider::Cylinder { .. } => Geometry::Line { datum },
+            Slider::Cylinder { .. } | Slider::Profile(_) => Geometry::Line { datum },
             _ => Geometry::Point,
         }
     }
@@ -153,9 +237,27 @@ impl Slider {
     }
 
     /// Effective radius used by the automatic window and Hertz estimates:
-    /// `sqrt(Rx Ry)` for an ellipsoid, the curvature at the lowest point for a map.
+    /// `sqrt(Rx Ry)` for an ellipsoid, the curvature at the lowest point for a map
+    /// or a profile.
     pub fn equivalent_radius(&self) -> f64 {
         match self {
+            Slider::Profile(p) => {
+                let f = &p.heights;
+                let k = (0..f.len())
+                    .min_by(|&a, &b| f[a].total_cmp(&f[b]))
+                    .unwrap_or(0);
+                let h = p.cell_size;
+                let curvature = if k > 0 && k + 1 < f.len() {
+                    (f[k + 1] - 2.0 * f[k] + f[k - 1]) / (h * h)
+                } else {
+                    0.0
+                };
+                if curvature > 0.0 {
+                    1.0 / curvature
+                } else {
+                    h * f.len() as f64
+                }
+            }
             Slider::Sphere { radius } | Slider::Cylinder { radius } => *radius,
             Slider::Ellipsoid { radius_x, radius_y } => (radius_x * radius_y).sqrt(),
             Slider::HeightMap(m) => {
@@ -201,6 +303,7 @@ impl Slider {
     ) -> Result<()> {
         let min_height = match self {
             Slider::HeightMap(m) => m.heights.iter().copied().fold(f64::INFINITY, f64::min),
+            Slider::Profile(p) => p.heights.iter().copied().fold(f64::INFINITY, f64::min),
             _ => 0.0,
         };
         use rayon::prelude::*;
@@ -217,6 +320,24 @@ impl Slider {
                     let (fv, dv) = match self {
                         Slider::Sphere { radius } => ((x * x + y * y) / (2.0 * radius), x / radius),
                         Slider::Cylinder { radius } => (x * x / (2.0 * radius), x / radius),
+                        Slider::Profile(p) => match (p.height(x), p.mean_slope(x, grid.cell)) {
+                            (Some(fv), Some(dv)) => (fv - min_height, dv),
+                            _ => {
+                                let e = p.half_extent();
+                                let [wx, _] = grid.half_widths();
+                                return Err(Error::invalid(
+                                    "grid",
+                                    format!(
+                                        "a window of half width {wx:.4e} centred at {:.4e}",
+                                        grid.centre()[0]
+                                    ),
+                                    &format!(
+                                        "a window inside the profile (half extent {e:.4e}); \
+                                         give a longer profile or a smaller grid.half_width"
+                                    ),
+                                ));
+                            }
+                        },
                         Slider::Ellipsoid { radius_x, radius_y } => (
                             x * x / (2.0 * radius_x) + y * y / (2.0 * radius_y),
                             x / radius_x,

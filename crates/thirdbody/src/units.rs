@@ -18,7 +18,7 @@ use crate::case::{Body, Case};
 use crate::error::{Error, Result};
 use crate::grid::{Geometry, Grid};
 use crate::layer::{ComplianceLaw, Layer, SolverUnits};
-use crate::shape::{HeightMap, Slider};
+use crate::shape::{HeightMap, Profile, Slider};
 use crate::solution::Solution;
 
 /// The units of a solve: one length, one modulus (pressure) and one time, each a
@@ -67,6 +67,7 @@ impl Scales {
     pub fn of(case: &Case) -> Scales {
         let length = match &case.slider {
             Slider::HeightMap(m) => m.cell_size * m.nx.max(m.ny) as f64,
+            Slider::Profile(p) => p.cell_size * p.heights.len() as f64,
             other => other.equivalent_radius(),
         };
         let time = match &case.layer {
@@ -161,6 +162,10 @@ impl Scales {
             Slider::Cylinder { radius } => Slider::Cylinder {
                 radius: self.length(*radius),
             },
+            Slider::Profile(p) => Slider::Profile(Profile {
+                cell_size: self.length(p.cell_size),
+                heights: p.heights.iter().map(|&h| self.length(h)).collect(),
+            }),
         }
     }
 

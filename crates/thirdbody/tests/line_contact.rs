@@ -136,3 +136,68 @@ fn the_datum_moves_the_approach_only() {
         }
     }
 }
+
+/// A profile sampled from the cylinder `x^2 / (2 R)` every 1e-6 R (heights shifted
+/// by a constant) gives the cylinder's contact: the linear interpolant is within
+/// `s^2 / (8 R)` of the parabola, which moves the pressure by about `E* s^2 / (8 R h)`
+/// (1.6e-6 of the peak with samples every 1e-5 R; 1.6e-8 here).
+#[test]
+fn a_sampled_profile_is_the_cylinder() {
+    let n = 120_001;
+    let spacing = 1e-6;
+    let heights: Vec<f64> = (0..n)
+        .map(|i| {
+            let x = (i as f64 + 0.5 - 0.5 * n as f64) * spacing;
+            x * x / 2.0 + 0.25
+        })
+        .collect();
+    // The same fixed window for both (an automatic one follows the curvature the
+    // profile's samples give, 1e-7 off R by rounding).
+    let mut fixed = cylinder(1e-3, 1024);
+    fixed.grid.half_width = Some([0.05, 0.0]);
+    let tight = SolverParams {
+        tolerance: 1e-13,
+        ..SolverParams::default()
+    };
+    let cylinder = solve(&fixed, &tight).unwrap();
+    let mut case = cylinder_case_with(Slider::Profile(Profile {
+        cell_size: spacing,
+        heights,
+    }));
+    case.loading.reference_distance = Some(1.0);
+    case.grid.half_width = Some([0.05, 0.0]);
+    let profile = solve(&case, &tight).unwrap();
+    let (a, b) = (cylinder.summary(), profile.summary());
+    for (what, x, y) in [
+        ("peak", a.max_pressure, b.max_pressure),
+        (
+            "half-width",
+            a.contact_x_max - a.contact_x_min,
+            b.contact_x_max - b.contact_x_min,
+        ),
+        ("approach", a.penetration, b.penetration),
+    ] {
+        assert!((x / y - 1.0).abs() < 1e-6, "{what}: {x} vs {y}");
+    }
+    assert!(b.friction_coefficient.abs() < 1e-5 * 0.034);
+    // A profile of two samples, or one with a NaN, is refused naming the file.
+    for heights in [vec![0.0, 1.0], vec![0.0, f64::NAN, 1.0]] {
+        let e = solve(
+            &cylinder_case_with(Slider::Profile(Profile {
+                cell_size: 1.0,
+                heights,
+            })),
+            &SolverParams::default(),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("slider.file"), "{e}");
+    }
+}
+
+fn cylinder_case_with(slider: Slider) -> Case {
+    Case {
+        slider,
+        ..cylinder(1e-3, 1024)
+    }
+}

@@ -98,6 +98,10 @@ fn rescale(case: &Case, f: &Factors) -> Case {
         Slider::Cylinder { radius } => Slider::Cylinder {
             radius: radius * f.length,
         },
+        Slider::Profile(p) => Slider::Profile(thirdbody::Profile {
+            cell_size: p.cell_size * f.length,
+            heights: p.heights.iter().map(|h| h * f.length).collect(),
+        }),
     };
     c.loading.normal_load *= if case.slider.is_line() {
         f.force_per_length()
