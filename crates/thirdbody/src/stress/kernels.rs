@@ -41,6 +41,7 @@
 use std::f64::consts::PI;
 
 use crate::case::Elastic;
+use crate::error::{Error, Result};
 
 /// Number of stress components, ordered `[sigma_x, sigma_y, sigma_z, tau_xy, tau_xz,
 /// tau_yz]` everywhere in this module.
@@ -241,6 +242,26 @@ pub trait StressKernels: Sync {
         let _ = (source, row);
         self.fill(z, lattice, table);
     }
+
+    /// Plane strain (a line contact): fills `out[c][d + count - 1]`, `-(count - 1)
+    /// <= d < count`, with the six stresses at `(d cell, z)` per unit pressure
+    /// uniform on the strip `|x| <= cell / 2` of the surface and along all y
+    /// ([`super::line`]); `out` is resized as needed. The default is an error: a
+    /// body without plane-strain stress kernels.
+    fn fill_strip(
+        &self,
+        z: f64,
+        cell: f64,
+        count: usize,
+        out: &mut [Vec<f64>; COMPONENTS],
+    ) -> Result<()> {
+        let _ = (z, cell, count, out);
+        Err(Error::invalid(
+            "slider.shape",
+            "a line contact",
+            "a point contact: this body has no plane-strain stress kernels",
+        ))
+    }
 }
 
 /// The pressure on a grid of square cells and one row of outputs along x (at the
@@ -423,6 +444,17 @@ impl StressKernels for HomogeneousStressKernels {
         let corners = FoldedCorners::new(lattice);
         let prim = corners.primitives(|u, v| corner_primitives(u, v, z, nu));
         corners.difference(&prim, lattice, table);
+    }
+
+    fn fill_strip(
+        &self,
+        z: f64,
+        cell: f64,
+        count: usize,
+        out: &mut [Vec<f64>; COMPONENTS],
+    ) -> Result<()> {
+        super::line::homogeneous_strip(self, z, cell, count, out);
+        Ok(())
     }
 }
 

@@ -123,6 +123,7 @@ use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
 use crate::body::Side;
 use crate::case::Elastic;
+use crate::error::Result;
 
 /// How a layered body's stress kernels are computed ([`LayeredStressKernels`] picks
 /// one per lattice and depth; tests compare them on both sides of each switch). `h1`
@@ -223,7 +224,7 @@ impl LayeredStressKernels {
     /// The index of the layer that holds depth z (`layers.len()`: the half-space
     /// base); at an interface, the side `interface_side` picks. A depth below a
     /// rigid base (refused by the stress requests) is read in the last layer.
-    fn layer(&self, z: f64) -> usize {
+    pub(super) fn layer(&self, z: f64) -> usize {
         let n = self.stack.layers.len();
         let mut bottom = 0.0;
         for (i, ply) in self.stack.layers.iter().enumerate() {
@@ -247,7 +248,7 @@ impl LayeredStressKernels {
     }
 
     /// The material of layer `layer` (`layers.len()`: the base half-space).
-    fn material(&self, layer: usize) -> Elastic {
+    pub(super) fn material(&self, layer: usize) -> Elastic {
         match (self.stack.layers.get(layer), self.stack.base) {
             (Some(ply), _) => ply.material,
             (None, Base::HalfSpace(m)) => m,
@@ -257,7 +258,13 @@ impl LayeredStressKernels {
 
     /// The wave-frame transfer `[xixi, etaeta, zz, xiz / i]` at wavenumber k >= 0 and
     /// depth z in `layer` (`crate::body::layered`); at k = 0 its long-wave limit.
-    fn transfer(&self, solver: &mut LayeredSolver, k: f64, layer: usize, z: f64) -> [f64; 4] {
+    pub(super) fn transfer(
+        &self,
+        solver: &mut LayeredSolver,
+        k: f64,
+        layer: usize,
+        z: f64,
+    ) -> [f64; 4] {
         if k == 0.0 {
             return self.long_wave_transfer(solver, layer, z);
         }
@@ -265,7 +272,7 @@ impl LayeredStressKernels {
     }
 
     /// A solver of the stack, for [`Self::transfer`].
-    fn solver(&self) -> LayeredSolver {
+    pub(super) fn solver(&self) -> LayeredSolver {
         LayeredSolver::new(&self.stack).expect("a validated stack")
     }
 
@@ -309,7 +316,7 @@ impl LayeredStressKernels {
 
     /// The decay length of the difference from Love's at large k: the reflection
     /// from the top layer's bottom (`2 h1 - z`) in the top layer, the depth below it.
-    fn decay_length(&self, layer: usize, z: f64) -> f64 {
+    pub(super) fn decay_length(&self, layer: usize, z: f64) -> f64 {
         if layer == 0 {
             2.0 * self.top_thickness() - z
         } else {
@@ -798,6 +805,17 @@ impl StressKernels for LayeredStressKernels {
     ) {
         let method = self.method_at(z, lattice);
         self.fill_parts(z, lattice, table, method, Some((source, row)));
+    }
+
+    fn fill_strip(
+        &self,
+        z: f64,
+        cell: f64,
+        count: usize,
+        out: &mut [Vec<f64>; COMPONENTS],
+    ) -> Result<()> {
+        super::line::layered_strip(self, z, cell, count, out);
+        Ok(())
     }
 }
 

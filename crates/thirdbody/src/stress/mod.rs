@@ -27,6 +27,7 @@
 pub mod derived;
 pub mod kernels;
 mod layered_kernels;
+pub mod line;
 mod long_wave;
 pub mod request;
 mod sections;
@@ -334,6 +335,9 @@ pub fn stresses_observed(
             "a finite pressure",
         ));
     }
+    if grid.is_line() {
+        check_line_section(section)?;
+    }
     section.validate(body)?;
     if let Some(base) = body.model().deepest() {
         let z = section.deepest();
@@ -388,6 +392,26 @@ pub fn stresses_observed(
     Ok(field)
 }
 
+/// Checks that `section` exists for a line contact (plane strain): the XZ plane
+/// (at y = 0: it is the same at every y), or one of its rows z = const (a plane, the
+/// surface, a side of an interface); not a block.
+fn check_line_section(section: &Section) -> Result<()> {
+    match section {
+        Section::XzPlane { y, .. } if *y != 0.0 => Err(Error::invalid(
+            "stress.y",
+            y,
+            "y = 0 for a line contact (plane strain: the XZ section is the same at every y)",
+        )),
+        Section::Block { .. } => Err(Error::invalid(
+            "stress.sections",
+            "block",
+            "\"xz\", \"surface\", \"interface\" or planes for a line contact (plane \
+             strain: its stresses are the XZ section, and a plane z = const is one row of it)",
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// [`stresses_observed`] of a checked section, in the units its numbers are in.
 fn stresses_in_units(
     grid: &Grid,
@@ -403,6 +427,21 @@ fn stresses_in_units(
     let kernels = stress_kernels(body, side)?;
     let xs: Vec<f64> = (0..grid.nx).map(|i| grid.x(i)).collect();
     let all_ys = || (0..grid.ny).map(|j| grid.y(j)).collect::<Vec<f64>>();
+    if grid.is_line() {
+        // Plane strain: every section is rows of the XZ plane, y = 0.
+        let depths = match section {
+            Section::XzPlane { depths, .. } | Section::Block { depths } => depths.clone(),
+            Section::Plane { z } => vec![*z],
+            Section::Interface { index, .. } => vec![body.model().interface_depths()[*index]],
+        };
+        let components = line::section(grid, pressure, kernels.as_ref(), &depths, depth_done)?;
+        return Ok(StressField {
+            xs,
+            ys: vec![0.0],
+            zs: depths,
+            components,
+        });
+    }
     let field = match section {
         Section::XzPlane { y, depths } => StressField {
             xs,

@@ -230,7 +230,7 @@ pub(crate) fn xz_plane(
 /// depths of one lattice), the items interleaved between the threads (neighbouring
 /// depths cost alike). Rayon's `map_init` makes a state per split job, several per
 /// thread.
-fn per_thread_map<T: Sync, S, R: Send>(
+pub(super) fn per_thread_map<T: Sync, S, R: Send>(
     items: &[T],
     init: impl Fn() -> S + Sync,
     f: impl Fn(&mut S, &T) -> R + Sync,
