@@ -13,8 +13,9 @@
 //! tau_xz  =  (1/2pi) (cos 2phi1 - cos 2phi2)
 //! ```
 //! evaluated without differences of nearly equal numbers (`D_1,2 = (x +- b)^2 + z^2`):
-//! `phi1 - phi2 = atan2(2 b z, z^2 + x^2 - b^2)`, `sin 2phi1 - sin 2phi2 = 4 b z (z^2
-//! - x^2 + b^2) / (D1 D2)`, `cos 2phi1 - cos 2phi2 = -8 b x z^2 / (D1 D2)`. Plane
+//! `phi1 - phi2 = atan2(2 b z, z^2 + x^2 - b^2)`,
+//! `sin 2phi1 - sin 2phi2 = 4 b z (z^2 - x^2 + b^2) / (D1 D2)`,
+//! `cos 2phi1 - cos 2phi2 = -8 b x z^2 / (D1 D2)`. Plane
 //! strain gives `sigma_y = nu (sigma_x + sigma_z)` and `tau_xy = tau_yz = 0`. The
 //! stresses of a half-space under given surface tractions do not depend on its
 //! modulus (the traction boundary-value problem's solution, Flamant's, is
@@ -29,19 +30,25 @@
 //! a wave along x): `sigma(x, z) = (1/pi) int_0^inf Re[T(k, z) P(k) e^{ikx}] dk`,
 //! `P(k) = 2 sin(k b) / k`. The closed form above with the Poisson ratio of z's
 //! layer (Boussinesq's transfer `[-(1 - kz), -2 nu, -(1 + kz), kz] e^{-kz}`) is
-//! taken out; the remainder `T - T_hom` decays like `e^{-k lambda}` (`lambda = 2 h1
-//! - z` in the top layer, `z` below) and is summed by the trapezoidal rule on the
+//! taken out; the remainder `T - T_hom` decays like `e^{-k lambda}`
+//! (`lambda = 2 h1 - z` in the top layer, `z` below) and is summed by the trapezoidal rule on the
 //! full k line, `dk = 2 pi / (L h)`, up to `50 / lambda` (where `(k lambda)^3
 //! e^{-k lambda}` is below 1e-16), folded onto the `L` wavenumbers of the cell
 //! pitch (the alias sum, exact for outputs at whole cells) and inverted by one
-//! real FFT of length `L` per component. By Poisson's formula the trapezoidal sum is
+//! real FFT of length `L` per component. The normal components' remainder has a
+//! kink `r0 + r1 |k|` at k = 0 (in the top layer it does not vanish there: the layer
+//! takes the base's surface strains), whose real-space tail `~ r1 / x^2` would reach
+//! the images: the carrier `r0 e^{-k mu} + (r1 + mu r0) k e^{-k mu}` (`mu =
+//! lambda`, `r1` by a one-sided difference) is taken out of the sum and added in
+//! closed form, `(1/pi) [atan((b + x) / mu) + atan((b - x) / mu)]` and `(1/pi) [(b +
+//! x) / ((b + x)^2 + mu^2) + (b - x) / ((b - x)^2 + mu^2)]`. By Poisson's formula the trapezoidal sum is
 //! the exact remainder plus its images a period `L h` away: `L` is at least 8
-//! times the section's cells and 16 times the stack's membrane length `z + sum_i
-//! t_i max(1, E_i / E_min)` (capped at 2^20 cells), so the images sit where the
-//! remainder, which falls off like `lambda / x^2`, is ~1e-3 of its peak or less
-//! (tests/line_stress.rs measures the kernel against adaptive quadrature of the
-//! Fourier integral). The cost per depth is `25 L h / (pi lambda)` transfers: a
-//! coating much thinner than a cell is slow.
+//! times the section's cells and 128 times the stack's membrane length `z + sum_i
+//! t_i max(1, E_i / E_min)` (capped at 2^20 cells). With 16 membrane lengths the
+//! images still cost 2e-5 of the peak (a coating 10 times stiffer than its
+//! substrate); with 128, 4e-8 (tests/line_stress.rs, against adaptive quadrature
+//! of the Fourier integral). The cost per depth is `25 L h / (pi lambda)`
+//! transfers: a coating much thinner than a cell, or very stiff, is slow.
 
 use std::f64::consts::PI;
 
@@ -146,30 +153,48 @@ pub(crate) fn layered_strip(
         .map(|p| p.thickness * (p.material.young / softest).max(1.0))
         .sum::<f64>();
     let period = (8 * count)
-        .max((16.0 * membrane / cell).ceil().min(MAX_PERIOD_CELLS as f64) as usize)
+        .max(
+            (128.0 * membrane / cell)
+                .ceil()
+                .min(MAX_PERIOD_CELLS as f64) as usize,
+        )
         .next_power_of_two()
         .min(MAX_PERIOD_CELLS);
     let dk = 2.0 * PI / (period as f64 * cell);
     let top = ((REMAINDER_DECAY / lambda) / dk).ceil().min(1e9) as usize;
     let b = 0.5 * cell;
     let mut solver: LayeredSolver = kernels.solver();
-    let mut bins = vec![[Complex::<f64>::default(); 4]; period];
-    for i in 0..=top {
-        let k = i as f64 * dk;
+    let mut remainder = |k: f64| {
         let t = kernels.transfer(&mut solver, k, layer, z);
         let kz = k * z;
         let e = (-kz).exp();
         let hom = [-(1.0 - kz) * e, -2.0 * nu * e, -(1.0 + kz) * e, kz * e];
+        std::array::from_fn::<f64, 4, _>(|q| t[q] - hom[q])
+    };
+    // The carriers of the normal components' value r0 and slope r1 at k = 0, whose
+    // kink in |k| would leave a 1 / x^2 tail in the periodic images:
+    // `r0 e^{-k mu} + (r1 + mu r0) k e^{-k mu}` is summed in closed form instead.
+    let mu = lambda;
+    let step = 1e-3 / membrane;
+    let (r0, r_1, r_2) = (remainder(0.0), remainder(step), remainder(2.0 * step));
+    let r1: [f64; 3] =
+        std::array::from_fn(|q| (4.0 * r_1[q] - r_2[q] - 3.0 * r0[q]) / (2.0 * step));
+    let mut bins = vec![[Complex::<f64>::default(); 4]; period];
+    for i in 0..=top {
+        let k = i as f64 * dk;
+        let r = remainder(k);
         let p = if i == 0 {
             cell
         } else {
             2.0 * (k * b).sin() / k
         };
+        let e = (-k * mu).exp();
+        let carried = |q: usize| r0[q] * e + (r1[q] + mu * r0[q]) * k * e;
         let f = [
-            Complex::new((t[0] - hom[0]) * p, 0.0),
-            Complex::new((t[1] - hom[1]) * p, 0.0),
-            Complex::new((t[2] - hom[2]) * p, 0.0),
-            Complex::new(0.0, (t[3] - hom[3]) * p),
+            Complex::new((r[0] - carried(0)) * p, 0.0),
+            Complex::new((r[1] - carried(1)) * p, 0.0),
+            Complex::new((r[2] - carried(2)) * p, 0.0),
+            Complex::new(0.0, r[3] * p),
         ];
         let j = i % period;
         for (bin, v) in bins[j].iter_mut().zip(f) {
@@ -199,6 +224,14 @@ pub(crate) fn layered_strip(
         for (m, o) in out[c].iter_mut().enumerate() {
             let d = m as i64 - (count as i64 - 1);
             *o += values[d.rem_euclid(period as i64) as usize];
+            if q < 3 {
+                // (1/pi) int_0^inf {1, k} e^{-k mu} P(k) cos(kx) dk.
+                let x = d as f64 * cell;
+                let (u, v) = (b + x, b - x);
+                let angles = ((u / mu).atan() + (v / mu).atan()) / PI;
+                let slopes = (u / (u * u + mu * mu) + v / (v * v + mu * mu)) / PI;
+                *o += r0[q] * angles + (r1[q] + mu * r0[q]) * slopes;
+            }
         }
     }
 }

@@ -5,6 +5,12 @@
 //! uniformly loaded rectangle (Love 1929; see [`kernels`]); a coated body will plug
 //! its own kernels in through [`StressKernels`].
 //!
+//! A line contact (plane strain, [`Grid::line`]) has stresses in the XZ plane only:
+//! every section is rows of it at y = 0 (the XZ plane's depths, a plane's or an
+//! interface's one depth; a block or another y is an error), by a 1-D DC-FFT of the
+//! strips' pressure with the body's strip kernels ([`StressKernels::fill_strip`],
+//! [`line`]).
+//!
 //! Conventions: tension positive, z into the body, pressure p >= 0 compressive on
 //! z = 0 (so `sigma_z = -p` on the surface under the load). Components are ordered
 //! `[sigma_x, sigma_y, sigma_z, tau_xy, tau_xz, tau_yz]`. Surface stresses (z = 0)

@@ -10,6 +10,10 @@
 //! down to three contact half-lengths (no deeper than a rigid base) in 64 depths, the
 //! surface plane, and for a layered body both sides of every interface. The contact
 //! half-length is the larger half-extent of the loaded cells along x and y.
+//!
+//! A line contact (plane strain, [`crate::Grid::line`]) has only the XZ section (the
+//! same at every y, so `y` stays 0, and no block); its surface, interfaces and
+//! planes are rows of it ([`super::line`]).
 
 use super::{stresses_observed, Section, Side, StressField};
 use crate::case::Body;
@@ -371,6 +375,9 @@ impl StressRequest {
         pressure: &[f64],
     ) -> Result<Vec<NamedSection>> {
         self.validate(body)?;
+        if grid.is_line() {
+            self.check_line()?;
+        }
         let [y_lo, y_hi] = [grid.y0, grid.y0 + grid.ny as f64 * grid.cell];
         let wants_xz = self.kinds(body).contains(&SectionKind::Xz);
         if wants_xz && !(y_lo..=y_hi).contains(&self.y) {
@@ -462,6 +469,34 @@ impl StressRequest {
             push(SectionId::Plane(k + 1), Section::Plane { z });
         }
         Ok(out)
+    }
+
+    /// Checks the request for a line contact (plane strain): its stresses are the XZ
+    /// section, the same at every y, so y stays 0 and there is no block; the surface,
+    /// the interfaces and the planes are rows of the XZ section.
+    fn check_line(&self) -> Result<()> {
+        if self.y != 0.0 {
+            return Err(Error::invalid(
+                "stress.y",
+                self.y,
+                "no y (0) for a line contact: in plane strain the XZ section is the same \
+                 at every y",
+            ));
+        }
+        if self
+            .sections
+            .as_ref()
+            .is_some_and(|k| k.contains(&SectionKind::Block))
+        {
+            return Err(Error::invalid(
+                "stress.sections",
+                "block",
+                "\"xz\", \"surface\" or \"interface\" for a line contact (plane strain: \
+                 its stresses are the XZ section; the surface, the interfaces and the \
+                 planes are rows of it)",
+            ));
+        }
+        Ok(())
     }
 
     /// Computes every requested section under `pressure` (one value per cell of
