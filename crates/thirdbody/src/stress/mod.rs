@@ -9,7 +9,7 @@
 //! every section is rows of it at y = 0 (the XZ plane's depths, a plane's or an
 //! interface's one depth; a block or another y is an error), by a 1-D DC-FFT of the
 //! strips' pressure with the body's strip kernels ([`StressKernels::fill_strip`],
-//! [`line`]).
+//! [`mod@line`]).
 //!
 //! Conventions: tension positive, z into the body, pressure p >= 0 compressive on
 //! z = 0 (so `sigma_z = -p` on the surface under the load). Components are ordered
