@@ -8,6 +8,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 use thirdbody::body::layered::{Base, LayeredSolver, Ply, Stack};
+use thirdbody::body::{SolidRheology, ViscoelasticHalfSpace};
 use thirdbody::stress::{
     stresses, LayeredStressKernels, Section, Side, StressKernels, StressRequest, COMPONENTS,
 };
@@ -123,7 +124,6 @@ fn hertz_line_contact_subsurface_field_is_mcewens() {
         let resultant = -f.components[2].iter().sum::<f64>() * s.grid.cell();
         let expected = flamant_inside(&s.grid, &s.mean_pressure(), 0.5 * w, z);
         let error = resultant / expected - 1.0;
-        eprintln!("window {:.3} a, resultant {resultant:e}", w / a);
         eprintln!("equilibrium at z = {:.1} a: {error:.1e}", z / a);
         assert!(error.abs() < 1e-6, "z {z}: resultant {resultant} of {Q}");
     }
@@ -356,5 +356,39 @@ fn section_of_1024_cells_and_64_depths_timing() {
             eprintln!("{name}: equilibrium at z = 3a {error:.1e} (load {load})");
             assert!(error.abs() < 1e-6);
         }
+    }
+}
+
+/// A viscoelastic half-space of constant nu has the elastic stresses under the same
+/// pressure (plane strain: only sigma_y carries nu, no modulus appears).
+#[test]
+fn a_viscoelastic_line_section_is_the_elastic_one() {
+    let grid = Grid::line(256, 4.0 / 256.0, 0.0, 1.0).unwrap();
+    let pressure = hertz_pressure(&grid, 1.0, 1.0);
+    let section = Section::XzPlane {
+        y: 0.0,
+        depths: vec![0.0, 0.3, 0.78, 2.0],
+    };
+    let elastic = Body::Homogeneous(Elastic {
+        young: 1.0,
+        poisson: 0.4,
+    });
+    let solid = Body::Viscoelastic(ViscoelasticHalfSpace {
+        rheology: SolidRheology::Zener {
+            glassy_modulus: 100.0,
+            relaxed_modulus: 3.0,
+            relaxation_time: 0.1,
+        },
+        poisson: 0.4,
+    });
+    let a = stresses(&grid, &pressure, &elastic, &section).unwrap();
+    let b = stresses(&grid, &pressure, &solid, &section).unwrap();
+    for (x, y) in a
+        .components
+        .iter()
+        .flatten()
+        .zip(b.components.iter().flatten())
+    {
+        assert!((x - y).abs() < 1e-14, "{x} vs {y}");
     }
 }
