@@ -31,6 +31,10 @@ pub struct Labels {
     pub stress_unit: &'static str,
     /// Printed after a moment.
     pub moment_unit: &'static str,
+    /// Printed after a force per unit length (a line contact's loads and forces).
+    pub line_force_unit: &'static str,
+    /// Printed after a moment per unit length (a line contact's).
+    pub line_moment_unit: &'static str,
 }
 
 const DIMENSIONLESS: Labels = Labels {
@@ -45,6 +49,8 @@ const DIMENSIONLESS: Labels = Labels {
     force_unit: "",
     stress_unit: "",
     moment_unit: "",
+    line_force_unit: " (per unit length)",
+    line_moment_unit: " (per unit length)",
 };
 
 const SI: Labels = Labels {
@@ -59,6 +65,8 @@ const SI: Labels = Labels {
     force_unit: " N",
     stress_unit: " Pa",
     moment_unit: " N m",
+    line_force_unit: " N/m",
+    line_moment_unit: " N m/m",
 };
 
 /// The labels of `units`.

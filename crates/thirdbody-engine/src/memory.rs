@@ -47,6 +47,11 @@ pub fn check(
         return Ok(());
     }
     let [nx, ny] = case.grid.cells;
+    let cells = if case.slider.is_line() {
+        format!("grid.cells = {nx}")
+    } else {
+        format!("grid.cells = [{nx}, {ny}]")
+    };
     let what = if stresses > solve {
         format!(
             "the stresses asked for need about {} (the block's or planes' points: reduce \
@@ -55,7 +60,7 @@ pub fn check(
         )
     } else {
         format!(
-            "grid.cells = [{nx}, {ny}] needs about {} per solve (reduce grid.cells)",
+            "{cells} needs about {} per solve (reduce grid.cells)",
             gib(solve)
         )
     };

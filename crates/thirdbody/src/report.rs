@@ -3,20 +3,31 @@
 //! [`Summary`], the solver's report, the window, the units, the wall time the front
 //! end measured and, when stresses were computed, their summary and the sections.
 //! One definition, serialised with serde, so that every front end reports exactly
-//! the same keys (listed in docs/outputs.md).
+//! the same keys (listed in docs/outputs.md). A line contact's report has no y keys
+//! (its y is the one strip's length, not a coordinate): `contact = "line"` and the
+//! datum of its approach (`reference_distance`) say what it is instead.
 
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 
 use crate::case::{Case, Units};
+use crate::grid::Geometry;
 use crate::solution::{Method, Solution, Summary};
 use crate::stress::{StressResults, StressSummary};
 
 /// What `summary.json` holds.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
-    /// The scalar results.
-    #[serde(flatten)]
+    /// The scalar results (without the y keys for a line contact).
+    #[serde(flatten, serialize_with = "summary_keys")]
     pub summary: Summary,
+    /// `"line"` for a line contact (plane strain, loads and forces per unit
+    /// length); absent for a point contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact: Option<&'static str>,
+    /// A line contact's datum of the approach (`loading.reference_distance`, or its
+    /// default the cylinder's radius).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference_distance: Option<f64>,
     /// Wall time of kernel set-up and solve, as the front end measured it.
     pub solve_seconds: f64,
     /// `"dimensionless"` or `"si"`.
@@ -31,10 +42,12 @@ pub struct Report {
     pub window_x_min: f64,
     /// See `window_x_min`.
     pub window_x_max: f64,
-    /// The final window's extent along y (cell edges).
-    pub window_y_min: f64,
+    /// The final window's extent along y (cell edges); absent for a line contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub window_y_min: Option<f64>,
     /// See `window_y_min`.
-    pub window_y_max: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub window_y_max: Option<f64>,
     /// Stress results, when stresses were computed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stress: Option<StressReport>,
@@ -160,6 +173,53 @@ fn energy_balance_warning(case: &Case, s: &Summary) -> Option<String> {
     })
 }
 
+/// A line contact's summary keys: those of [`Summary`] without its y keys.
+#[derive(Serialize)]
+struct LineSummary {
+    normal_load: f64,
+    penetration: f64,
+    max_pressure: f64,
+    max_pressure_x: f64,
+    contact_area: f64,
+    contact_x_min: f64,
+    contact_x_max: f64,
+    moment: f64,
+    friction_coefficient: f64,
+    tangential_force: f64,
+    dissipation_friction_coefficient: f64,
+    iterations: usize,
+    residual: f64,
+    nx: usize,
+    cell_size: f64,
+}
+
+/// Serialises `s` whole for a point contact and without its y keys for a line
+/// contact (whose grid alone has one row: a point grid has at least
+/// [`crate::grid::MIN_CELLS`] rows).
+fn summary_keys<S: Serializer>(s: &Summary, serializer: S) -> Result<S::Ok, S::Error> {
+    if s.ny != 1 {
+        return s.serialize(serializer);
+    }
+    LineSummary {
+        normal_load: s.normal_load,
+        penetration: s.penetration,
+        max_pressure: s.max_pressure,
+        max_pressure_x: s.max_pressure_x,
+        contact_area: s.contact_area,
+        contact_x_min: s.contact_x_min,
+        contact_x_max: s.contact_x_max,
+        moment: s.moment,
+        friction_coefficient: s.friction_coefficient,
+        tangential_force: s.tangential_force,
+        dissipation_friction_coefficient: s.dissipation_friction_coefficient,
+        iterations: s.iterations,
+        residual: s.residual,
+        nx: s.nx,
+        cell_size: s.cell_size,
+    }
+    .serialize(serializer)
+}
+
 /// The `stress` object of a report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StressReport {
@@ -229,8 +289,14 @@ impl Report {
         let [wx, wy] = g.half_widths();
         let [cx, cy] = g.centre();
         let info = &solution.info;
+        let (contact, reference_distance, y_window) = match g.geometry() {
+            Geometry::Point => (None, None, Some((cy - wy, cy + wy))),
+            Geometry::Line { datum } => (Some("line"), Some(datum), None),
+        };
         Report {
             summary: solution.summary(),
+            contact,
+            reference_distance,
             solve_seconds,
             units: case.units.name(),
             method: info.method,
@@ -238,8 +304,8 @@ impl Report {
             windows: info.windows,
             window_x_min: cx - wx,
             window_x_max: cx + wx,
-            window_y_min: cy - wy,
-            window_y_max: cy + wy,
+            window_y_min: y_window.map(|w| w.0),
+            window_y_max: y_window.map(|w| w.1),
             stress: stress.map(StressReport::of),
             warnings: model_warnings(case, solution),
             thirdbody_version: crate::provenance::VERSION,

@@ -7,13 +7,18 @@
 //! (`surface.vti`), the stresses asked for (see [`crate::app::stress_outputs`]) and the
 //! plots. `--format` chooses among NPY, CSV and VTK. All are staged and renamed into
 //! place together (see [`crate::atomic`]).
+//!
+//! A line contact (plane strain: one row of strips along x) writes the same files as
+//! profiles along x: NPY arrays of shape (nx,), the pressure as `x,pressure`, the
+//! slider's shape (`shape.npy`), a VTK image one point high, and the pressure
+//! profile; no colour maps (there is no y to map).
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use ndarray::Array2;
+use ndarray::{Array1, Array2};
 use serde_json::Value;
 use thirdbody::stress::StressResults;
 use thirdbody::{Case, Grid, Solution};
@@ -92,7 +97,7 @@ pub struct SolveOutputs<'a> {
 /// folder removes those of an earlier run that it does not write again. Only exact
 /// names are matched, so a user's own files in the folder are never touched.
 pub fn is_output_name(name: &str) -> bool {
-    const FIXED: [&str; 14] = [
+    const FIXED: [&str; 15] = [
         "summary.json",
         "case.toml",
         "pressure.npy",
@@ -101,6 +106,7 @@ pub fn is_output_name(name: &str) -> bool {
         "body_displacement.npy",
         "gap.npy",
         "layer_displacement.npy",
+        "shape.npy",
         "surface.vti",
         "pressure_map.png",
         "pressure_x.png",
@@ -170,6 +176,9 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
     if let Some(w3) = &solution.layer_displacement {
         fields.push(("layer_displacement", w3));
     }
+    if g.is_line() {
+        fields.push(("shape", &solution.shape));
+    }
     if o.formats.npy {
         for (name, field) in &fields {
             out.write(&format!("{name}.npy"), |path| {
@@ -200,6 +209,25 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
 
     let u = plot_units(case, solution);
     let (x_label, y_label, p_label) = (u.x(), u.y(), u.pressure());
+    if g.is_line() {
+        let x: Vec<f64> = (0..g.nx()).map(|i| u.length(g.x(i))).collect();
+        out.write("pressure_x.png", |path| {
+            plot::profile_plot(
+                path,
+                &[Series {
+                    label: "line contact".to_string(),
+                    x,
+                    y: p.iter().map(|&v| u.stress(v)).collect(),
+                    dashed: false,
+                }],
+                "Pressure along x (line contact)",
+                &x_label,
+                &p_label,
+                contact_x(solution).map(|(a, b)| (u.length(a), u.length(b))),
+            )
+        })?;
+        return out.commit_replacing(is_output_name);
+    }
     let scaled = Grid::new(
         g.nx(),
         g.ny(),
@@ -258,12 +286,12 @@ pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
 /// for its window and its largest pressure.
 pub fn plot_units(case: &Case, solution: &Solution) -> units::PlotUnits {
     let g = &solution.grid;
-    let window = [
-        g.x0(),
-        g.y0(),
-        g.x0() + g.nx() as f64 * g.cell(),
-        g.y0() + g.ny() as f64 * g.cell(),
-    ]
+    let x_max = g.x0() + g.nx() as f64 * g.cell();
+    let window = if g.is_line() {
+        vec![g.x0(), x_max]
+    } else {
+        vec![g.x0(), g.y0(), x_max, g.y0() + g.ny() as f64 * g.cell()]
+    }
     .iter()
     .fold(0.0f64, |m, v| m.max(v.abs()));
     units::PlotUnits::new(case.units, window, solution.summary().max_pressure)
@@ -282,8 +310,14 @@ pub fn row_nearest_y0(g: &Grid) -> usize {
         .unwrap_or(0)
 }
 
-/// A grid field as a float64 NPY array of shape (ny, nx).
+/// A grid field as a float64 NPY array of shape (ny, nx), or (nx,) for a line
+/// contact.
 fn write_field_npy(path: &Path, g: &Grid, field: &[f64]) -> Result<()> {
+    if g.is_line() {
+        anyhow::ensure!(field.len() == g.nx(), "field size does not match the grid");
+        ndarray_npy::write_npy(path, &Array1::from_vec(field.to_vec()))?;
+        return Ok(());
+    }
     let array = Array2::from_shape_vec((g.ny(), g.nx()), field.to_vec())
         .context("field size does not match the grid")?;
     ndarray_npy::write_npy(path, &array)?;
@@ -291,9 +325,17 @@ fn write_field_npy(path: &Path, g: &Grid, field: &[f64]) -> Result<()> {
 }
 
 /// `x,y,pressure` per cell, rows along y (y outer, x inner), shortest round-trip
-/// decimal form.
+/// decimal form; `x,pressure` for a line contact.
 fn write_pressure_csv(path: &Path, g: &Grid, p: &[f64]) -> Result<()> {
     let mut w = BufWriter::new(File::create(path)?);
+    if g.is_line() {
+        writeln!(w, "x,pressure")?;
+        for (i, v) in p.iter().enumerate() {
+            writeln!(w, "{},{}", g.x(i), v)?;
+        }
+        w.flush()?;
+        return Ok(());
+    }
     writeln!(w, "x,y,pressure")?;
     for j in 0..g.ny() {
         let y = g.y(j);
@@ -336,5 +378,24 @@ mod tests {
         assert_eq!(lines[0], "x,y,pressure");
         // Line 1 + 43: x_3 = -2 + 3.5 * 0.5 = -0.25, y_5 = -2 + 5.5 * 0.5 = 0.75.
         assert_eq!(lines[44], "-0.25,0.75,43");
+    }
+
+    #[test]
+    fn a_line_contact_writes_profiles_along_x() {
+        let dir = tempfile::tempdir().unwrap();
+        let g = Grid::line(8, 0.5, 0.0, 1.0).unwrap();
+        let field: Vec<f64> = (0..8).map(|k| k as f64).collect();
+        write_field_npy(&dir.path().join("f.npy"), &g, &field).unwrap();
+        let a: Array1<f64> = ndarray_npy::read_npy(dir.path().join("f.npy")).unwrap();
+        assert_eq!(a.len(), 8);
+        assert_eq!(a[3], 3.0);
+        write_pressure_csv(&dir.path().join("p.csv"), &g, &field).unwrap();
+        let text = std::fs::read_to_string(dir.path().join("p.csv")).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 9);
+        assert_eq!(lines[0], "x,pressure");
+        // x_3 = -2 + 3.5 * 0.5 = -0.25.
+        assert_eq!(lines[4], "-0.25,3");
+        assert!(write_field_npy(&dir.path().join("g.npy"), &g, &field[..7]).is_err());
     }
 }

@@ -78,11 +78,15 @@ impl Spinner {
             Progress::Window { attempt, grid } => {
                 self.window = attempt;
                 let [wx, wy] = grid.half_widths();
-                self.shown.bar.set_message(format!(
-                    "window {attempt}: {} x {} cells, half widths {wx:.3e} x {wy:.3e}",
-                    grid.nx(),
-                    grid.ny()
-                ));
+                self.shown.bar.set_message(if grid.is_line() {
+                    format!("window {attempt}: {} cells, half width {wx:.3e}", grid.nx())
+                } else {
+                    format!(
+                        "window {attempt}: {} x {} cells, half widths {wx:.3e} x {wy:.3e}",
+                        grid.nx(),
+                        grid.ny()
+                    )
+                });
             }
             Progress::Iteration {
                 iteration,

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use crate::heightmap;
 use anyhow::{Context, Result};
 use clap::Args;
-use ndarray::Array2;
+use ndarray::{Array1, Array2};
 use serde_json::Value;
 use thirdbody::case_file::parse_case_file;
 use thirdbody::{Grid, KernelCache};
@@ -97,6 +97,24 @@ fn read_pressure(dir: &Path, grid: &Grid) -> Result<Vec<f64>> {
     let npy = dir.join("pressure.npy");
     let csv = dir.join("pressure.csv");
     let p = if npy.exists() {
+        if grid.is_line() {
+            let a: Array1<f64> = ndarray_npy::read_npy(&npy).map_err(|e| {
+                bad(format!(
+                    "cannot read {} as a line contact's profile of shape ({},): {e}",
+                    npy.display(),
+                    grid.nx()
+                ))
+            })?;
+            if a.len() != grid.nx() {
+                return Err(bad(format!(
+                    "{} has {} points; its case.toml solves to ({},)",
+                    npy.display(),
+                    a.len(),
+                    grid.nx()
+                )));
+            }
+            return Ok(a.to_vec());
+        }
         let a: Array2<f64> = ndarray_npy::read_npy(&npy)
             .map_err(|e| bad(format!("cannot read {}: {e}", npy.display())))?;
         if a.dim() != (grid.ny(), grid.nx()) {
@@ -118,7 +136,7 @@ fn read_pressure(dir: &Path, grid: &Grid) -> Result<Vec<f64>> {
             .collect::<Option<_>>()
             .ok_or_else(|| {
                 bad(format!(
-                    "{} has a line that is not x,y,pressure",
+                    "{} has a line that does not end in the pressure",
                     csv.display()
                 ))
             })?;

@@ -690,3 +690,57 @@ fn a_sweep_varies_one_layer_of_a_stack() {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains("body.layers[3].thickness"), "{stderr}");
 }
+
+#[test]
+fn a_sweep_of_line_contacts_gives_each_direct_solve() {
+    // A cylinder (plane strain) over three loads per unit length: each row equals
+    // what the library's solve of that case gives, and no row has a y column.
+    let dir = tempfile::tempdir().unwrap();
+    let base = fs::read_to_string(examples().join("hertz_line.toml"))
+        .unwrap()
+        .replace("cells = 1024", "cells = 256");
+    let path = write_case(dir.path(), &base);
+    let out = dir.path().join("sweep");
+    let loads = ["5e-4", "1e-3", "2e-3"];
+    let sweep =
+        Sweep::from_file(&path, &[format!("loading.normal_load={}", loads.join(","))]).unwrap();
+    let report = run(&sweep, &options(&out), &|_| {}).unwrap();
+    assert_eq!(report.computed, 3);
+    let rows = read_results(&out);
+    assert_eq!(rows.len(), 3);
+    for row in &rows {
+        assert!(
+            !row.contains_key("contact_y_min") && !row.contains_key("ny"),
+            "{row:?}"
+        );
+        assert_eq!(row["contact"], "line");
+        let load = &row["loading.normal_load"];
+        let text = base.replace("normal_load = 1e-3", &format!("normal_load = {load}"));
+        let file =
+            thirdbody::case_file::parse_case_file(&text, &mut |_, _| unreachable!()).unwrap();
+        let solution = thirdbody::solve(&file.case, &file.solver).unwrap();
+        let s = solution.summary();
+        for (key, value) in [
+            ("normal_load", s.normal_load),
+            ("penetration", s.penetration),
+            ("max_pressure", s.max_pressure),
+            ("contact_area", s.contact_area),
+            ("contact_x_min", s.contact_x_min),
+            ("contact_x_max", s.contact_x_max),
+            ("friction_coefficient", s.friction_coefficient),
+        ] {
+            let got: f64 = row[key].parse().unwrap();
+            assert!(
+                (got - value).abs() <= 1e-12 * value.abs().max(1e-300),
+                "load {load}, {key}: sweep {got}, solve {value}"
+            );
+        }
+    }
+    // cite takes the line case as it is.
+    let cite = thirdbody(&["cite", path.to_str().unwrap()]);
+    assert!(
+        cite.status.success() && !cite.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&cite.stderr)
+    );
+}

@@ -26,7 +26,7 @@ fn count(k: usize) {
 }
 use thirdbody::{solve, SolverParams};
 
-const EXAMPLES: [&str; 10] = [
+const EXAMPLES: [&str; 11] = [
     include_str!("../../../../examples/paper_fig3.toml"),
     include_str!("../../../../examples/hertz.toml"),
     include_str!("../../../../examples/ellipsoid_si.toml"),
@@ -37,6 +37,7 @@ const EXAMPLES: [&str; 10] = [
     include_str!("../../../../examples/polymer_liner_rigid.toml"),
     include_str!("../../../../examples/fractional_zener_rubber.toml"),
     include_str!("../../../../examples/sweeps/zener_body_and_layer.toml"),
+    include_str!("../../../../examples/hertz_line.toml"),
 ];
 
 /// Values a hostile user might write in place of a number.
@@ -61,6 +62,10 @@ fn wild_value() -> impl Strategy<Value = String> {
         Just("\"zener\"".to_string()),
         Just("\"elastic\"".to_string()),
         Just("\"prony\"".to_string()),
+        // The line contact's words: a cylinder where a point slider was, one number
+        // where a pair was.
+        Just("\"cylinder\"".to_string()),
+        Just("16".to_string()),
         Just("[1e-9, 1e9]".to_string()),
         Just("0.4999999".to_string()),
         Just("99999999999999999999".to_string()),
@@ -91,15 +96,21 @@ fn mutate(text: &str, line: usize, kind: u8, value: &str) -> String {
     lines.join("\n")
 }
 
-/// A small grid and no stresses, so that every solve is quick.
+/// A small grid and no stresses, so that every solve is quick (one number of cells
+/// for a line contact).
 fn small(text: &str) -> String {
+    let cells = if text.contains("\"cylinder\"") {
+        "cells = 16"
+    } else {
+        "cells = [16, 16]"
+    };
     text.lines()
         .take_while(|l| {
             !l.trim_start().starts_with("[stress]") && !l.trim_start().starts_with("[sweep")
         })
         .map(|l| {
             if l.trim_start().starts_with("cells") {
-                "cells = [16, 16]".to_string()
+                cells.to_string()
             } else {
                 l.to_string()
             }
