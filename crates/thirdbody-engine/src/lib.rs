@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod atomic;
+pub mod geometry;
 pub mod heightmap;
 pub mod memory;
 pub mod summary;

@@ -248,6 +248,7 @@ fn solve(args: &SolveArgs) -> Result<()> {
         },
         case_text,
     ) = read_case(&args.case)?;
+    thirdbody_engine::geometry::check(&case, stress.as_ref()).map_err(BadInput)?;
     crate::memory::check(&case, stress.as_ref(), 1, crate::memory::available_bytes())
         .map_err(BadInput)?;
     if args.out.canonicalize().is_ok_and(|p| p.parent().is_none()) {

@@ -176,6 +176,7 @@ pub fn run(args: &StressArgs) -> Result<()> {
     let summary_path = dir.join("summary.json");
     let mut summary: Value = serde_json::from_str(&read_text(&summary_path, "the summary")?)
         .map_err(|e| bad(format!("{}: {e}", summary_path.display())))?;
+    thirdbody_engine::geometry::check(&file.case, Some(&request)).map_err(bad)?;
     crate::memory::check(
         &file.case,
         Some(&request),

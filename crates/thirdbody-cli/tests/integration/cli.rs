@@ -432,3 +432,75 @@ fn the_shared_bad_input_list_exits_cleanly_with_one_line() {
         assert_no_output(&run.out_dir);
     }
 }
+
+/// A cylinder (plane strain) on 256 cells.
+const CYLINDER: &str = "[slider]\nshape = \"cylinder\"\nradius = 1.0\n[substrate]\n\
+                        young = 1.0\npoisson = 0.3\n[loading]\nnormal_load = 1e-3\n\
+                        [grid]\ncells = 256\n";
+
+#[test]
+fn a_line_contact_writes_profiles_along_x_and_a_summary_without_y() {
+    let run = solve(CYLINDER, &[], &[]);
+    assert_eq!(run.code(), Some(0), "{}", run.stderr());
+    let dir = &run.out_dir;
+    for name in [
+        "pressure.npy",
+        "body_displacement.npy",
+        "gap.npy",
+        "shape.npy",
+        "pressure.csv",
+        "surface.vti",
+        "pressure_x.png",
+        "summary.json",
+        "case.toml",
+    ] {
+        assert!(dir.join(name).is_file(), "{name} missing");
+    }
+    for name in ["pressure_map.png", "compliance_map.png"] {
+        assert!(
+            !dir.join(name).exists(),
+            "{name} written for a line contact"
+        );
+    }
+    for name in ["pressure", "gap", "body_displacement", "shape"] {
+        let a: ndarray::Array1<f64> =
+            ndarray_npy::read_npy(dir.join(format!("{name}.npy"))).unwrap();
+        assert_eq!(a.len(), 256, "{name}");
+    }
+    let csv = std::fs::read_to_string(dir.join("pressure.csv")).unwrap();
+    assert_eq!(csv.lines().next(), Some("x,pressure"));
+    assert_eq!(csv.lines().count(), 257);
+    let s = read_summary(dir);
+    for key in [
+        "contact_y_min",
+        "contact_y_max",
+        "max_pressure_y",
+        "ny",
+        "window_y_min",
+        "window_y_max",
+    ] {
+        assert!(!s.contains_key(key), "{key} in a line contact's summary");
+    }
+    assert_eq!(s["contact"], "line");
+    assert_eq!(s["reference_distance"], 1.0);
+    // Q per unit length = sum(p) h.
+    let p: ndarray::Array1<f64> = ndarray_npy::read_npy(dir.join("pressure.npy")).unwrap();
+    let h = s["cell_size"].as_f64().unwrap();
+    assert!((p.sum() * h / 1e-3 - 1.0).abs() < 1e-8);
+    assert!(run.stdout().contains("line contact"), "{}", run.stdout());
+    assert!(run.stdout().contains("width"), "{}", run.stdout());
+}
+
+#[test]
+fn a_line_contact_refuses_a_point_contacts_stress_maps_naming_the_key() {
+    assert_bad_input(
+        &format!("{CYLINDER}[stress]\ny = 0.5\n"),
+        &[],
+        &["stress.y = 0.5", "line contact"],
+    );
+    assert_bad_input(
+        &format!("{CYLINDER}[stress]\nsections = [\"xz\", \"block\"]\n"),
+        &[],
+        &["stress.sections = block", "line contact"],
+    );
+}

@@ -192,16 +192,19 @@ impl Sweep {
     fn check_cases(&mut self) -> Result<(), SweepError> {
         let mut case_bytes = Vec::with_capacity(self.len());
         for index in 0..self.len() {
-            match self.parse_case(index) {
+            let parsed = self.parse_case(index).map_err(|e| match e {
+                thirdbody::Error::Parse(m) => strip_line(&m).to_string(),
+                other => other.to_string(),
+            });
+            let checked = parsed.and_then(|file| {
+                crate::geometry::check(&file.case, file.stress.as_ref()).map(|()| file)
+            });
+            match checked {
                 Ok(file) => case_bytes.push(crate::memory::estimated_bytes(
                     &file.case,
                     file.stress.as_ref(),
                 )),
-                Err(e) => {
-                    let message = match e {
-                        thirdbody::Error::Parse(m) => strip_line(&m).to_string(),
-                        other => other.to_string(),
-                    };
+                Err(message) => {
                     return Err(SweepError::Case {
                         index,
                         settings: self.describe(index),
