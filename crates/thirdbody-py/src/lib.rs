@@ -17,7 +17,7 @@ use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use numpy::{PyArray1, PyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayDyn};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt};
@@ -269,7 +269,7 @@ impl Case {
         &self.text
     }
 
-    /// The grid's cell counts `(nx, ny)`.
+    /// The grid's cell counts `(nx, ny)` (`(nx, 1)` for a line contact).
     #[getter]
     fn cells(&self) -> (usize, usize) {
         let [nx, ny] = self.file.case.grid.cells;
@@ -310,15 +310,20 @@ impl Case {
 
     fn __repr__(&self) -> String {
         let [nx, ny] = self.file.case.grid.cells;
+        let cells = if self.file.case.slider.is_line() {
+            format!("line contact, {nx}")
+        } else {
+            format!("{nx} x {ny}")
+        };
         format!(
-            "<thirdbody.Case {nx} x {ny} cells, hash {}>",
+            "<thirdbody.Case {cells} cells, hash {}>",
             &self.case_hash()[..12]
         )
     }
 }
 
 /// The solved contact: `summary` (a dict with the keys of `summary.json`) and the
-/// fields as numpy arrays of shape `(ny, nx)`.
+/// fields as numpy arrays of shape `(ny, nx)`, or `(nx,)` for a line contact.
 #[pyclass(module = "thirdbody", frozen)]
 struct Solution {
     /// The library's solution; its pressure and grid serve later stress requests.
@@ -334,15 +339,16 @@ struct Solution {
     stress_results: Option<thirdbody::stress::StressResults>,
 }
 
-/// A solution's fields as read-only numpy arrays.
+/// A solution's fields as read-only numpy arrays: of shape `(ny, nx)` for a point
+/// contact, `(nx,)` for a line contact (which has no `y`).
 struct Fields {
-    pressure: Py<PyArray2<f64>>,
-    gap: Py<PyArray2<f64>>,
-    body_displacement: Py<PyArray2<f64>>,
-    layer_displacement: Option<Py<PyArray2<f64>>>,
-    compliance: Option<Py<PyArray2<f64>>>,
+    pressure: Py<PyArrayDyn<f64>>,
+    gap: Py<PyArrayDyn<f64>>,
+    body_displacement: Py<PyArrayDyn<f64>>,
+    layer_displacement: Option<Py<PyArrayDyn<f64>>>,
+    compliance: Option<Py<PyArrayDyn<f64>>>,
     x: Py<PyArray1<f64>>,
-    y: Py<PyArray1<f64>>,
+    y: Option<Py<PyArray1<f64>>>,
 }
 
 /// A read-only numpy array that owns `values` (no copy), of shape `shape`.
@@ -378,7 +384,7 @@ impl Solution {
         &self,
         py: Python<'py>,
         name: &str,
-    ) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+    ) -> PyResult<Option<Bound<'py, PyArrayDyn<f64>>>> {
         let a = &self.arrays;
         let array = match name {
             "pressure" => Some(&a.pressure),
@@ -403,31 +409,31 @@ impl Solution {
 
     /// Contact pressure.
     #[getter]
-    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
         self.arrays.pressure.bind(py).clone()
     }
 
     /// Gap between slider and deformed surface.
     #[getter]
-    fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
         self.arrays.gap.bind(py).clone()
     }
 
     /// Elastic body's surface displacement.
     #[getter]
-    fn body_displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn body_displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
         self.arrays.body_displacement.bind(py).clone()
     }
 
     /// Layer's displacement (`None` without a layer).
     #[getter]
-    fn layer_displacement<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+    fn layer_displacement<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArrayDyn<f64>>> {
         Some(self.arrays.layer_displacement.as_ref()?.bind(py).clone())
     }
 
     /// Layer's compliance `C[p]` (`None` without a layer).
     #[getter]
-    fn compliance<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+    fn compliance<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArrayDyn<f64>>> {
         Some(self.arrays.compliance.as_ref()?.bind(py).clone())
     }
 
@@ -462,6 +468,12 @@ impl Solution {
         side: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
         let name = section;
+        if self.solution.grid.is_line() && y != 0.0 {
+            return Err(PyValueError::new_err(format!(
+                "y = {y} is not allowed: a line contact (plane strain) has no y; its \
+                 sections are at y = 0"
+            )));
+        }
         let depths = depths.map(stresses::depths_from).transpose()?;
         let section = stresses::section(name, y, z, depths, interface, side)?;
         let g = self.solution.grid;
@@ -498,7 +510,8 @@ impl Solution {
 
     /// The solution as an `xarray.Dataset` (xarray is an optional dependency):
     /// variables `pressure`, `gap`, `body_displacement` and, with a layer,
-    /// `layer_displacement` and `compliance` on dims `(y, x)`; coordinates in the
+    /// `layer_displacement` and `compliance` on dims `(y, x)`, or `(x,)` for a line
+    /// contact (whose summary has no y keys); coordinates in the
     /// case's units (the `units` attribute of each is `"1"` for a dimensionless case);
     /// attributes: the case file's text (`case`), its hash, the thirdbody version and
     /// commit, every scalar of the summary and its `warnings`, if any, as one string
@@ -518,17 +531,22 @@ impl Solution {
             let attrs = PyDict::new(py);
             attrs.set_item("units", unit(si_unit))?;
             attrs.set_item("long_name", long_name)?;
-            variables.set_item(name, (("y", "x"), values, attrs))?;
+            if self.arrays.y.is_some() {
+                variables.set_item(name, (("y", "x"), values, attrs))?;
+            } else {
+                variables.set_item(name, (("x",), values, attrs))?;
+            }
         }
         let coords = PyDict::new(py);
-        for (name, values, long_name) in [
-            (
+        let axes = [
+            Some((
                 "x",
                 self.x(py),
                 "sliding direction (the slider moves in +x)",
-            ),
-            ("y", self.y(py), "across the sliding direction"),
-        ] {
+            )),
+            self.y(py).map(|y| ("y", y, "across the sliding direction")),
+        ];
+        for (name, values, long_name) in axes.into_iter().flatten() {
             let attrs = PyDict::new(py);
             attrs.set_item("units", unit("m"))?;
             attrs.set_item("long_name", long_name)?;
@@ -562,10 +580,17 @@ impl Solution {
         xarray.call_method("Dataset", (), Some(&kwargs))
     }
 
-    /// y of the cell centres.
+    /// y of the cell centres (`None` for a line contact, which has no y).
     #[getter]
-    fn y<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.arrays.y.bind(py).clone()
+    fn y<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        Some(self.arrays.y.as_ref()?.bind(py).clone())
+    }
+
+    /// Whether this is a line contact (plane strain: fields of shape `(nx,)`, loads
+    /// and forces per unit length).
+    #[getter]
+    fn is_line(&self) -> bool {
+        self.solution.grid.is_line()
     }
 }
 
@@ -634,6 +659,10 @@ fn solve_in(
     kernels: &Mutex<KernelCache>,
 ) -> PyResult<Solution> {
     let file = &case.file;
+    if stresses {
+        thirdbody_engine::geometry::check(&file.case, file.stress.as_ref())
+            .map_err(PyValueError::new_err)?;
+    }
     fits_in_memory(py, file)?;
     let request = file.stress.as_ref().filter(|_| stresses);
     let mut window = 0;
@@ -681,16 +710,24 @@ fn solve_in(
     let summary_json = serde_json::to_string(&report)
         .map_err(|e| PyRuntimeError::new_err(format!("summary: {e}")))?;
     let g = solution.grid;
-    let shape = (g.ny(), g.nx());
+    let shape = if g.is_line() {
+        numpy::ndarray::IxDyn(&[g.nx()])
+    } else {
+        numpy::ndarray::IxDyn(&[g.ny(), g.nx()])
+    };
     // The fields move into numpy without a copy; the pressure stays for stresses.
     let arrays = Fields {
-        pressure: read_only(py, solution.pressure.clone(), shape)?,
-        gap: read_only(py, std::mem::take(&mut solution.gap), shape)?,
-        body_displacement: read_only(py, std::mem::take(&mut solution.body_displacement), shape)?,
+        pressure: read_only(py, solution.pressure.clone(), shape.clone())?,
+        gap: read_only(py, std::mem::take(&mut solution.gap), shape.clone())?,
+        body_displacement: read_only(
+            py,
+            std::mem::take(&mut solution.body_displacement),
+            shape.clone(),
+        )?,
         layer_displacement: solution
             .layer_displacement
             .take()
-            .map(|v| read_only(py, v, shape))
+            .map(|v| read_only(py, v, shape.clone()))
             .transpose()?,
         compliance: solution
             .compliance
@@ -698,7 +735,9 @@ fn solve_in(
             .map(|v| read_only(py, v, shape))
             .transpose()?,
         x: read_only(py, (0..g.nx()).map(|i| g.x(i)).collect(), g.nx())?,
-        y: read_only(py, (0..g.ny()).map(|j| g.y(j)).collect(), g.ny())?,
+        y: (!g.is_line())
+            .then(|| read_only(py, (0..g.ny()).map(|j| g.y(j)).collect(), g.ny()))
+            .transpose()?,
     };
     warn_all(py, &report.warnings)?;
     Ok(Solution {

@@ -42,7 +42,7 @@ class Case:
         """The case file's text this case was parsed from."""
     @property
     def cells(self) -> Tuple[int, int]:
-        """The grid's cell counts ``(nx, ny)``."""
+        """The grid's cell counts ``(nx, ny)`` (``(nx, 1)`` for a line contact)."""
     @property
     def case_hash(self) -> str:
         """SHA-256 of the canonical case (``case_hash`` of summary.json)."""
@@ -55,7 +55,9 @@ class Case:
         given as an array, if any."""
 
 class Solution:
-    """A solved contact; made by :func:`solve`. Arrays are read-only, shape ``(ny, nx)``."""
+    """A solved contact; made by :func:`solve`. Arrays are read-only, shape ``(ny, nx)``,
+    or ``(nx,)`` for a line contact (plane strain; its summary has no y keys, its
+    loads and forces are per unit length)."""
 
     @property
     def summary(self) -> Dict[str, Any]:
@@ -79,8 +81,11 @@ class Solution:
     def x(self) -> _Array:
         """x of the cell centres, shape ``(nx,)``."""
     @property
-    def y(self) -> _Array:
-        """y of the cell centres, shape ``(ny,)``."""
+    def y(self) -> Optional[_Array]:
+        """y of the cell centres, shape ``(ny,)``; ``None`` for a line contact."""
+    @property
+    def is_line(self) -> bool:
+        """Whether this is a line contact (fields of shape ``(nx,)``)."""
     def stresses(
         self,
         section: str,
@@ -103,8 +108,9 @@ class Solution:
         file names), each a dict as :meth:`stresses` returns. ``ValueError`` without
         a ``[stress]`` section or after ``solve(..., stresses=False)``."""
     def to_xarray(self) -> Any:
-        """The solution as an ``xarray.Dataset`` (needs xarray); the summary's
-        scalars and its ``warnings`` (one string, a line each) are attributes."""
+        """The solution as an ``xarray.Dataset`` (needs xarray) on dims ``(y, x)``,
+        or ``(x,)`` for a line contact; the summary's scalars and its ``warnings``
+        (one string, a line each) are attributes."""
 
 def solve(
     case: Case,

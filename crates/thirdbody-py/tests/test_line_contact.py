@@ -1,0 +1,74 @@
+"""Line contacts (plane strain) in Python: 1-D fields of shape (nx,), a summary
+without y keys, a Dataset on the one dimension x, and the Hertz line contact's
+half-width and peak pressure against the closed form."""
+
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import thirdbody
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+HERTZ_LINE = ROOT / "examples" / "hertz_line.toml"
+Y_KEYS = ("contact_y_min", "contact_y_max", "max_pressure_y", "ny", "window_y_min",
+          "window_y_max")
+
+
+@pytest.fixture(scope="module")
+def line():
+    return thirdbody.solve(thirdbody.Case.from_file(HERTZ_LINE))
+
+
+def test_hertz_line_contact_matches_the_closed_form(line):
+    # Johnson, Contact Mechanics, section 4.3: a = (4 Q R / (pi E*))^(1/2),
+    # p0 = 2 Q / (pi a), E* = E / (1 - nu^2); here Q = 1e-3 per unit length, R = 1,
+    # E = 1, nu = 0.3, 1024 cells.
+    q, r, e, nu = 1e-3, 1.0, 1.0, 0.3
+    e_star = e / (1 - nu**2)
+    a = math.sqrt(4 * q * r / (math.pi * e_star))
+    p0 = 2 * q / (math.pi * a)
+    s = line.summary
+    half_width = 0.5 * (s["contact_x_max"] - s["contact_x_min"])
+    assert half_width == pytest.approx(a, rel=2e-3)
+    assert s["contact_area"] == pytest.approx(2 * a, rel=2e-3)
+    assert s["max_pressure"] == pytest.approx(p0, rel=2e-3)
+    # The load per unit length is the pressure summed over strips of width h.
+    assert line.pressure.sum() * s["cell_size"] == pytest.approx(q, rel=1e-8)
+
+
+def test_a_line_contact_has_1d_fields_and_no_y(line):
+    nx = line.summary["nx"]
+    assert nx == 1024
+    for field in (line.pressure, line.gap, line.body_displacement):
+        assert field.shape == (nx,)
+    assert line.x.shape == (nx,)
+    assert line.y is None
+    assert line.is_line
+    s = line.summary
+    assert s["contact"] == "line" and s["reference_distance"] == 1.0
+    for key in Y_KEYS:
+        assert key not in s, key
+    with pytest.raises(ValueError, match="y = 0.5"):
+        line.stresses("xz", y=0.5)
+
+
+def test_a_point_contact_keeps_its_2d_fields():
+    point = thirdbody.solve(thirdbody.Case.from_file(ROOT / "examples" / "hertz.toml"))
+    assert point.pressure.shape == (128, 128)
+    assert not point.is_line and point.y is not None
+    assert "contact" not in point.summary
+    for key in Y_KEYS:
+        assert key in point.summary, key
+
+
+def test_to_xarray_of_a_line_contact_has_one_dimension(line):
+    xarray = pytest.importorskip("xarray")
+    data = line.to_xarray()
+    assert isinstance(data, xarray.Dataset)
+    assert data["pressure"].dims == ("x",)
+    assert "y" not in data.coords
+    np.testing.assert_array_equal(data["pressure"].values, line.pressure)
+    assert data.attrs["contact"] == "line"
+    assert "contact_y_min" not in data.attrs
