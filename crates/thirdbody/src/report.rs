@@ -314,3 +314,58 @@ impl Report {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn report_keys(text: &str) -> serde_json::Map<String, serde_json::Value> {
+        let file = crate::case_file::parse_case_file(text, &mut |_, _| unreachable!()).unwrap();
+        let solution = crate::solve(&file.case, &file.solver).unwrap();
+        let report = Report::new(&file.case, &solution, 0.0, None);
+        match serde_json::to_value(report).unwrap() {
+            serde_json::Value::Object(m) => m,
+            other => panic!("{other}"),
+        }
+    }
+
+    const Y_KEYS: [&str; 6] = [
+        "max_pressure_y",
+        "contact_y_min",
+        "contact_y_max",
+        "ny",
+        "window_y_min",
+        "window_y_max",
+    ];
+
+    #[test]
+    fn a_line_contact_reports_no_y_but_its_geometry_and_a_point_contact_all_keys() {
+        let line = report_keys(
+            "[slider]\nshape = \"cylinder\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
+             poisson = 0.3\n[loading]\nnormal_load = 1e-3\nreference_distance = 2.0\n\
+             [grid]\ncells = 64\n",
+        );
+        for key in Y_KEYS {
+            assert!(!line.contains_key(key), "{key}");
+        }
+        assert_eq!(line["contact"], "line");
+        assert_eq!(line["reference_distance"], 2.0);
+        for key in [
+            "normal_load",
+            "max_pressure_x",
+            "contact_x_min",
+            "nx",
+            "case_hash",
+        ] {
+            assert!(line.contains_key(key), "{key}");
+        }
+        let point = report_keys(
+            "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
+             poisson = 0.3\n[loading]\nnormal_load = 1e-6\n[grid]\ncells = [16, 16]\n",
+        );
+        for key in Y_KEYS {
+            assert!(point.contains_key(key), "{key}");
+        }
+        assert!(!point.contains_key("contact") && !point.contains_key("reference_distance"));
+    }
+}
