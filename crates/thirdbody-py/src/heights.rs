@@ -1,11 +1,12 @@
-//! A slider's heights given as a 2-D numpy array instead of a file: the case's text
-//! then reads `file = "<array>"` and the parser's height-map loader hands it the
-//! array, so the library checks it, interpolates it and hashes it exactly as the
-//! same map read from an NPY file.
+//! A slider's heights given as a numpy array instead of a file (2-D for a height
+//! map, 1-D for a line contact's profile): the case's text then reads
+//! `file = "<array>"` and the parser's height-map loader hands it the array, so the
+//! library checks it, interpolates it and hashes it exactly as the same heights
+//! read from an NPY file.
 
 use std::path::Path;
 
-use numpy::{PyArray2, PyReadonlyArray2};
+use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use thirdbody::HeightMap;
@@ -23,16 +24,26 @@ pub struct Heights {
 }
 
 impl Heights {
-    /// Any array-like of numbers with two dimensions (converted to float64 by numpy).
+    /// Any array-like of numbers with two dimensions, or one (a profile, one row),
+    /// converted to float64 by numpy.
     pub fn from_py(value: &Bound<'_, PyAny>) -> PyResult<Self> {
         let numpy = value.py().import("numpy")?;
         let array = numpy
             .call_method1("ascontiguousarray", (value, "float64"))
             .map_err(|e| {
                 PyValueError::new_err(format!(
-                    "slider.heights is not allowed: a 2-D array of numbers ({e})"
+                    "slider.heights is not allowed: a 2-D array of numbers, or 1-D for a \
+                     profile ({e})"
                 ))
             })?;
+        if let Ok(row) = array.extract::<PyReadonlyArray1<'_, f64>>() {
+            let values: Vec<f64> = row.as_array().iter().copied().collect();
+            return Ok(Heights {
+                nx: values.len(),
+                ny: 1,
+                values,
+            });
+        }
         let array: PyReadonlyArray2<'_, f64> = array.extract().map_err(|_| {
             let shape = array
                 .getattr("shape")
@@ -41,7 +52,7 @@ impl Heights {
                 .unwrap_or_default();
             PyValueError::new_err(format!(
                 "slider.heights of shape {shape} is not allowed: a 2-D array (ny, nx), rows \
-                 along y"
+                 along y, or a 1-D array for a profile"
             ))
         })?;
         let view = array.as_array();

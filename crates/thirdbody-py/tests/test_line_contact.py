@@ -72,3 +72,31 @@ def test_to_xarray_of_a_line_contact_has_one_dimension(line):
     np.testing.assert_array_equal(data["pressure"].values, line.pressure)
     assert data.attrs["contact"] == "line"
     assert "contact_y_min" not in data.attrs
+
+
+def test_a_profile_given_as_an_array_equals_the_same_npy_file_and_pickles(tmp_path):
+    # The cylinder x^2 / 2 sampled every 1e-6 over +-0.06: as a 1-D numpy array and as
+    # the same array saved to NPY, the two cases are one case (hash and results).
+    import pickle
+
+    x = (np.arange(120_001) - 60_000) * 1e-6
+    heights = x**2 / 2.0 + 0.25
+    np.save(tmp_path / "profile.npy", heights)
+    common = {"substrate": {"young": 1.0, "poisson": 0.3},
+              "loading": {"normal_load": 1e-3}, "grid": {"cells": 512, "half_width": 0.05}}
+    from_array = thirdbody.Case(
+        slider={"shape": "profile", "heights": heights, "cell_size": 1e-6}, **common)
+    text = (f'[slider]\nshape = "profile"\nfile = "profile.npy"\ncell_size = 1e-6\n'
+            '[substrate]\nyoung = 1.0\npoisson = 0.3\n[loading]\nnormal_load = 1e-3\n'
+            '[grid]\ncells = 512\nhalf_width = 0.05\n')
+    from_file = thirdbody.Case.from_toml(text, base_dir=tmp_path)
+    assert from_array.case_hash == from_file.case_hash
+    a, b = thirdbody.solve(from_array), thirdbody.solve(from_file)
+    np.testing.assert_array_equal(a.pressure, b.pressure)
+    assert a.is_line and a.pressure.shape == (512,)
+    again = pickle.loads(pickle.dumps(from_array))
+    assert again.case_hash == from_array.case_hash
+    # A 2-D map given as a profile names the file and the other shape.
+    with pytest.raises(ValueError, match="height_map"):
+        thirdbody.Case(slider={"shape": "profile", "heights": np.zeros((3, 4)),
+                               "cell_size": 1.0}, **common)
