@@ -853,54 +853,54 @@ fn slider_shape(
     load_height_map: &mut dyn FnMut(&str, f64) -> Result<HeightMap>,
 ) -> Result<Slider> {
     let shape = need(
-        s.shape,
+        s.shape.as_ref(),
         "slider.shape",
         "choose \"sphere\", \"ellipsoid\", \"height_map\", \"cylinder\" or \"profile\"",
     )?;
+    // A shape of one radius (sphere, cylinder) and one sampled from a file (height
+    // map, profile): the keys each may have.
+    let radius = |s: &RawSlider, what: &str| -> Result<f64> {
+        let why = format!("a {what} has only a radius");
+        unused(s.radius_x.is_some(), "slider.radius_x", &why)?;
+        unused(s.radius_y.is_some(), "slider.radius_y", &why)?;
+        unused(s.file.is_some(), "slider.file", &why)?;
+        unused(s.cell_size.is_some(), "slider.cell_size", &why)?;
+        need(
+            s.radius,
+            "slider.radius",
+            &format!("a {what} needs its radius (> 0)"),
+        )
+    };
+    let mut sampled = |s: RawSlider, what: &str, file_is: &str| -> Result<HeightMap> {
+        let why = format!("a {what} is given by file and cell_size");
+        unused(s.radius.is_some(), "slider.radius", &why)?;
+        unused(s.radius_x.is_some(), "slider.radius_x", &why)?;
+        unused(s.radius_y.is_some(), "slider.radius_y", &why)?;
+        let file = need(
+            s.file,
+            "slider.file",
+            &format!("a {what} needs its file ({file_is})"),
+        )?;
+        let cell_size = need(
+            s.cell_size,
+            "slider.cell_size",
+            &format!("a {what} needs the spacing of its samples (> 0)"),
+        )?;
+        load_height_map(&file, cell_size)
+    };
     match shape {
-        RawShape::Profile => {
-            let why = "a profile is given by file and cell_size";
-            unused(s.radius.is_some(), "slider.radius", why)?;
-            unused(s.radius_x.is_some(), "slider.radius_x", why)?;
-            unused(s.radius_y.is_some(), "slider.radius_y", why)?;
-            let file = need(
-                s.file,
-                "slider.file",
-                "a profile needs its file (CSV or NPY, one row of heights)",
-            )?;
-            let cell_size = need(
-                s.cell_size,
-                "slider.cell_size",
-                "a profile needs the spacing of its samples (> 0)",
-            )?;
-            Ok(Slider::Profile(Profile::from_map(load_height_map(
-                &file, cell_size,
-            )?)?))
-        }
-        RawShape::Cylinder => {
-            let why = "a cylinder has only a radius";
-            unused(s.radius_x.is_some(), "slider.radius_x", why)?;
-            unused(s.radius_y.is_some(), "slider.radius_y", why)?;
-            unused(s.file.is_some(), "slider.file", why)?;
-            unused(s.cell_size.is_some(), "slider.cell_size", why)?;
-            Ok(Slider::Cylinder {
-                radius: need(
-                    s.radius,
-                    "slider.radius",
-                    "a cylinder needs its radius (> 0)",
-                )?,
-            })
-        }
-        RawShape::Sphere => {
-            let why = "a sphere has only a radius";
-            unused(s.radius_x.is_some(), "slider.radius_x", why)?;
-            unused(s.radius_y.is_some(), "slider.radius_y", why)?;
-            unused(s.file.is_some(), "slider.file", why)?;
-            unused(s.cell_size.is_some(), "slider.cell_size", why)?;
-            Ok(Slider::Sphere {
-                radius: need(s.radius, "slider.radius", "a sphere needs its radius (> 0)")?,
-            })
-        }
+        RawShape::Profile => Ok(Slider::Profile(Profile::from_map(sampled(
+            s,
+            "profile",
+            "CSV or NPY, one row of heights",
+        )?)?)),
+        RawShape::HeightMap => Ok(Slider::HeightMap(sampled(s, "height map", "CSV or NPY")?)),
+        RawShape::Cylinder => Ok(Slider::Cylinder {
+            radius: radius(&s, "cylinder")?,
+        }),
+        RawShape::Sphere => Ok(Slider::Sphere {
+            radius: radius(&s, "sphere")?,
+        }),
         RawShape::Ellipsoid => {
             let why = "an ellipsoid has radius_x and radius_y";
             unused(s.radius.is_some(), "slider.radius", why)?;
@@ -918,23 +918,6 @@ fn slider_shape(
                     "an ellipsoid needs radius_y (> 0)",
                 )?,
             })
-        }
-        RawShape::HeightMap => {
-            let why = "a height map is given by file and cell_size";
-            unused(s.radius.is_some(), "slider.radius", why)?;
-            unused(s.radius_x.is_some(), "slider.radius_x", why)?;
-            unused(s.radius_y.is_some(), "slider.radius_y", why)?;
-            let file = need(
-                s.file,
-                "slider.file",
-                "a height map needs its file (CSV or NPY)",
-            )?;
-            let cell_size = need(
-                s.cell_size,
-                "slider.cell_size",
-                "a height map needs the spacing of its samples (> 0)",
-            )?;
-            Ok(Slider::HeightMap(load_height_map(&file, cell_size)?))
         }
     }
 }

@@ -1,29 +1,10 @@
 //! Line contacts (plane strain) against closed forms: Hertz's cylinder on an
 //! elastic half-space (Johnson, Contact Mechanics, eq. 4.43-4.45).
 
-use thirdbody::*;
+mod cases;
 
-fn cylinder(load: f64, cells: usize) -> Case {
-    Case {
-        slider: Slider::Cylinder { radius: 1.0 },
-        body: Body::Homogeneous(Elastic {
-            young: 1.0,
-            poisson: 0.3,
-        }),
-        layer: None,
-        loading: Loading {
-            normal_load: load,
-            velocity: None,
-            reference_distance: None,
-        },
-        grid: GridSpec {
-            cells: [cells, 1],
-            half_width: None,
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    }
-}
+use cases::cylinder;
+use thirdbody::*;
 
 /// Hertz: half-width `a = (4 Q R / (pi E*))^(1/2)`, peak `p0 = 2 Q / (pi a)`,
 /// pressure `p0 (1 - x^2 / a^2)^(1/2)` (Johnson eq. 4.43-4.45), and the approach

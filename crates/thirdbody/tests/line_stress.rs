@@ -4,6 +4,9 @@
 //! adaptive quadrature of its Fourier integral, and the errors of sections a line
 //! contact does not have.
 
+mod cases;
+
+use cases::cylinder;
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -13,28 +16,6 @@ use thirdbody::stress::{
     stresses, LayeredStressKernels, Section, Side, StressKernels, StressRequest, COMPONENTS,
 };
 use thirdbody::*;
-
-fn cylinder(load: f64, cells: usize) -> Case {
-    Case {
-        slider: Slider::Cylinder { radius: 1.0 },
-        body: Body::Homogeneous(Elastic {
-            young: 1.0,
-            poisson: 0.3,
-        }),
-        layer: None,
-        loading: Loading {
-            normal_load: load,
-            velocity: None,
-            reference_distance: None,
-        },
-        grid: GridSpec {
-            cells: [cells, 1],
-            half_width: None,
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    }
-}
 
 const Q: f64 = 1e-3;
 

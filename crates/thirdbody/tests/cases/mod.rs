@@ -1,5 +1,5 @@
 //! Case builders shared by the integration tests: the paper's dimensionless cases
-//! (R = E2 = T = 1, section 4) and Hertz.
+//! (R = E2 = T = 1, section 4), Hertz's sphere and cylinder.
 #![allow(dead_code)]
 
 use thirdbody::layer::Table;
@@ -26,6 +26,15 @@ pub fn sphere(load: f64, cells: usize) -> Case {
         },
         units: Units::Dimensionless,
     }
+}
+
+/// A cylinder of radius 1 (a line contact) on a homogeneous half-space (E = 1,
+/// nu = 0.3) under `load` per unit length, on `cells` cells, automatic window.
+pub fn cylinder(load: f64, cells: usize) -> Case {
+    let mut case = sphere(load, cells);
+    case.slider = Slider::Cylinder { radius: 1.0 };
+    case.grid.cells = [cells, 1];
+    case
 }
 
 /// The paper's nonlinear layer of Figs. 7-12: C' = 0.02, T = 1, sigmoid law
