@@ -248,8 +248,12 @@ def test_heights_as_an_array_are_checked_as_a_file_is(tmp_path):
         thirdbody.Case(slider={**slider, "heights": bad}, **rest)
     assert str(from_array.value) == str(from_file.value)
     assert "row 3, column 7" in str(from_array.value)
-    with pytest.raises(ValueError, match=r"slider.heights of shape \(201,\)"):
+    # One row of heights is a line contact's profile, not a map: named, with the shape
+    # it is for; three dimensions are no slider at all.
+    with pytest.raises(ValueError, match=r"slider.file = 1 x 201 samples.*\"profile\""):
         thirdbody.Case(slider={**slider, "heights": heights[0]}, **rest)
+    with pytest.raises(ValueError, match=r"slider.heights of shape \(2, 2, 2\)"):
+        thirdbody.Case(slider={**slider, "heights": np.zeros((2, 2, 2))}, **rest)
     with pytest.raises(ValueError, match="slider.heights and slider.file"):
         thirdbody.Case(slider={**slider, "heights": heights, "file": "map.npy"}, **rest)
     with pytest.raises(ValueError, match="numpy.save"):
