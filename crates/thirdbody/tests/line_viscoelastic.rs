@@ -115,3 +115,32 @@ fn hunter_rigid_cylinder_on_a_standard_linear_solid() {
         assert!(e < tolerance, "{name}: {e:.3e}");
     }
 }
+
+/// Every speed converges on 4096 cells (E_inf / E0 = 10), and mu rises to one
+/// maximum and falls. V tau / a0 = 0.10199 stalled Newton when the contact was
+/// warm-started from a 48-cell scout (a sweep of 1000 speeds met it once); a line
+/// contact is now scouted four times coarser at each step.
+#[test]
+fn a_zener_line_contact_converges_at_every_speed() {
+    let mut speeds: Vec<f64> = (0..=48)
+        .map(|k| 10f64.powf(-3.5 + 6.0 * k as f64 / 48.0))
+        .collect();
+    speeds.push(0.101_990_8);
+    speeds.sort_by(f64::total_cmp);
+    let mu: Vec<f64> = speeds
+        .iter()
+        .map(|&speed| {
+            let s = solve(&hunter_case(10.0, speed, 4096), &SolverParams::default())
+                .unwrap_or_else(|e| panic!("V tau / a0 = {speed}: {e}"));
+            s.summary().friction_coefficient
+        })
+        .collect();
+    let peak = mu
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))
+        .map(|(k, _)| k)
+        .unwrap();
+    assert!(mu[..=peak].windows(2).all(|w| w[1] > w[0]), "{mu:?}");
+    assert!(mu[peak..].windows(2).all(|w| w[1] < w[0]), "{mu:?}");
+}
