@@ -1518,19 +1518,24 @@ mod tests {
         assert!(DissipationPlan::new(0, 3).is_err());
     }
 
+    /// The timing tests' body: ten branches of 0.1 with retardation times 1e-4 to
+    /// 1e5 on a glassy compliance of 0.1.
+    fn ten_branches() -> CreepSeries {
+        CreepSeries {
+            glassy: 0.1,
+            branches: (0..10)
+                .map(|k| CreepBranch {
+                    compliance: 0.1,
+                    retardation_time: 10f64.powi(k - 4),
+                })
+                .collect(),
+        }
+    }
+
     #[test]
     #[ignore = "timing: run with --ignored --nocapture"]
     fn hysteresis_timing_256_by_256_with_10_branches() {
-        let branches: Vec<CreepBranch> = (0..10)
-            .map(|k| CreepBranch {
-                compliance: 0.1,
-                retardation_time: 10f64.powi(k - 4),
-            })
-            .collect();
-        let creep = CreepSeries {
-            glassy: 0.1,
-            branches,
-        };
+        let creep = ten_branches();
         let (p, h) = hertz_grid(256);
         let plan = DissipationPlan::new(256, 256).unwrap();
         for _ in 0..5 {
@@ -1769,16 +1774,7 @@ mod tests {
     #[test]
     #[ignore = "timing: run with --ignored --nocapture"]
     fn line_hysteresis_timing_4096_cells_10_branches() {
-        let branches: Vec<CreepBranch> = (0..10)
-            .map(|k| CreepBranch {
-                compliance: 0.1,
-                retardation_time: 10f64.powi(k - 4),
-            })
-            .collect();
-        let creep = CreepSeries {
-            glassy: 0.1,
-            branches,
-        };
+        let creep = ten_branches();
         let (p, h) = line_gaussian_grid(4096);
         for _ in 0..3 {
             let start = std::time::Instant::now();
