@@ -814,12 +814,12 @@ fn chebyshev_coefficients_2d(values: &[f64], n: usize) -> Vec<f64> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::body::layered::BaseContact;
     use crate::case::Elastic;
 
-    fn elastic(young: f64, poisson: f64) -> Elastic {
+    pub(in crate::body) fn elastic(young: f64, poisson: f64) -> Elastic {
         Elastic { young, poisson }
     }
 
@@ -832,11 +832,43 @@ mod tests {
             / peak
     }
 
-    fn ply(young: f64, poisson: f64, thickness: f64) -> Ply {
+    pub(in crate::body) fn ply(young: f64, poisson: f64, thickness: f64) -> Ply {
         Ply {
             material: elastic(young, poisson),
             thickness,
         }
+    }
+
+    /// Stacks of `count` layers alternating E = 1e3 (nu = 0.2) and 1e-3 (nu = 0.45),
+    /// stiff or soft first, their thicknesses read cyclically from `thickness` from
+    /// index `first`, for each `(count, first)` of `layouts`, on every base: the ends
+    /// of the range the kernels' tests sweep.
+    pub(in crate::body) fn alternating_stacks(
+        thickness: &[f64; 8],
+        layouts: &[(usize, usize)],
+    ) -> Vec<Stack> {
+        let mut stacks = Vec::new();
+        for base in [
+            Base::HalfSpace(elastic(1.0, 0.3)),
+            Base::HalfSpace(elastic(1e-3, 0.45)),
+            Base::HalfSpace(elastic(1e3, 0.2)),
+            Base::Rigid(BaseContact::Bonded),
+            Base::Rigid(BaseContact::Frictionless),
+        ] {
+            for &(count, first) in layouts {
+                for stiff_first in [true, false] {
+                    let layers = (0..count)
+                        .map(|i| {
+                            let stiff = (i % 2 == 0) == stiff_first;
+                            let (e, nu) = if stiff { (1e3, 0.2) } else { (1e-3, 0.45) };
+                            ply(e, nu, thickness[(first + i) % 8])
+                        })
+                        .collect();
+                    stacks.push(Stack { layers, base });
+                }
+            }
+        }
+        stacks
     }
 
     /// The kernel at `(x, y)` cells by direct quadrature of the Fourier integral in
@@ -925,29 +957,10 @@ mod tests {
     /// Stacks at the ends of the range: 1 to 8 layers 1e-3 to 1e3 cells thick, E
     /// ratios 1e-3 to 1e3, every base.
     fn extreme_stacks() -> Vec<Stack> {
-        let thickness = [1e-3, 1e3, 0.1, 10.0, 1.0, 1e2, 0.01, 1e3];
-        let mut stacks = Vec::new();
-        for base in [
-            Base::HalfSpace(elastic(1.0, 0.3)),
-            Base::HalfSpace(elastic(1e-3, 0.45)),
-            Base::HalfSpace(elastic(1e3, 0.2)),
-            Base::Rigid(BaseContact::Bonded),
-            Base::Rigid(BaseContact::Frictionless),
-        ] {
-            for (count, first) in [(1, 0), (1, 1), (2, 2), (3, 0), (8, 0), (4, 4)] {
-                for stiff_first in [true, false] {
-                    let layers = (0..count)
-                        .map(|i| {
-                            let stiff = (i % 2 == 0) == stiff_first;
-                            let (e, nu) = if stiff { (1e3, 0.2) } else { (1e-3, 0.45) };
-                            ply(e, nu, thickness[(first + i) % 8])
-                        })
-                        .collect();
-                    stacks.push(Stack { layers, base });
-                }
-            }
-        }
-        stacks
+        alternating_stacks(
+            &[1e-3, 1e3, 0.1, 10.0, 1.0, 1e2, 0.01, 1e3],
+            &[(1, 0), (1, 1), (2, 2), (3, 0), (8, 0), (4, 4)],
+        )
     }
 
     fn one_layer(coating: Elastic, thickness: f64, substrate: Elastic) -> StackBody {

@@ -325,18 +325,8 @@ fn lattice_kernel(remainder: &Remainder, nx: usize, resolution: Resolution) -> V
 mod tests {
     use super::*;
     use crate::body::layered::{Base, BaseContact, LayeredSolver};
+    use crate::body::stack::tests::{alternating_stacks, elastic, ply};
     use crate::case::Elastic;
-
-    fn elastic(young: f64, poisson: f64) -> Elastic {
-        Elastic { young, poisson }
-    }
-
-    fn ply(young: f64, poisson: f64, thickness: f64) -> Ply {
-        Ply {
-            material: elastic(young, poisson),
-            thickness,
-        }
-    }
 
     fn compliance(m: Elastic) -> f64 {
         (1.0 - m.poisson * m.poisson) / m.young
@@ -658,29 +648,10 @@ mod tests {
     /// Stacks at the ends of the range: 1 to 8 layers 1e-4 to 1e6 cells thick, E
     /// ratios 1e-3 to 1e3, every base.
     fn extreme_stacks() -> Vec<Stack> {
-        let thickness = [1e-4, 1e6, 0.1, 10.0, 1.0, 1e3, 0.01, 1e5];
-        let mut stacks = Vec::new();
-        for base in [
-            Base::HalfSpace(elastic(1.0, 0.3)),
-            Base::HalfSpace(elastic(1e-3, 0.45)),
-            Base::HalfSpace(elastic(1e3, 0.2)),
-            Base::Rigid(BaseContact::Bonded),
-            Base::Rigid(BaseContact::Frictionless),
-        ] {
-            for (count, first) in [(1, 0), (1, 1), (1, 2), (2, 2), (3, 0), (8, 0), (4, 4)] {
-                for stiff_first in [true, false] {
-                    let layers = (0..count)
-                        .map(|i| {
-                            let stiff = (i % 2 == 0) == stiff_first;
-                            let (e, nu) = if stiff { (1e3, 0.2) } else { (1e-3, 0.45) };
-                            ply(e, nu, thickness[(first + i) % 8])
-                        })
-                        .collect();
-                    stacks.push(Stack { layers, base });
-                }
-            }
-        }
-        stacks
+        alternating_stacks(
+            &[1e-4, 1e6, 0.1, 10.0, 1.0, 1e3, 0.01, 1e5],
+            &[(1, 0), (1, 1), (1, 2), (2, 2), (3, 0), (8, 0), (4, 4)],
+        )
     }
 
     #[test]
