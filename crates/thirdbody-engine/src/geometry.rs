@@ -42,12 +42,9 @@ mod tests {
         thirdbody::case_file::parse_case_file(text, &mut |_, _| unreachable!()).unwrap()
     }
 
-    const LINE: &str = "[slider]\nshape = \"cylinder\"\nradius = 1.0\n[substrate]\n\
-                        young = 1.0\npoisson = 0.3\n[loading]\nnormal_load = 1e-3\n\
-                        [grid]\ncells = 64\n";
-    const POINT: &str = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\n\
-                         young = 1.0\npoisson = 0.3\n[loading]\nnormal_load = 1e-6\n\
-                         [grid]\ncells = [16, 16]\n";
+    /// The bundled Hertz cases, a line and a point contact.
+    const LINE: &str = include_str!("../../../examples/hertz_line.toml");
+    const POINT: &str = include_str!("../../../examples/hertz.toml");
 
     #[test]
     fn a_line_contact_refuses_a_y_and_a_block_naming_the_key() {

@@ -79,14 +79,14 @@ pub fn check(
 mod tests {
     use super::*;
 
+    /// The bundled Hertz case on `cells x cells`.
     fn case(cells: usize) -> Case {
-        let text = format!(
-            "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
-             poisson = 0.3\n[loading]\nnormal_load = 5e-6\n[grid]\ncells = [{cells}, {cells}]\n"
-        );
-        thirdbody::case_file::parse_case_file(&text, &mut |_, _| unreachable!())
+        let text = include_str!("../../../examples/hertz.toml");
+        let mut case = thirdbody::case_file::parse_case_file(text, &mut |_, _| unreachable!())
             .unwrap()
-            .case
+            .case;
+        case.grid.cells = [cells, cells];
+        case
     }
 
     #[test]

@@ -153,8 +153,10 @@ struct Convolutions {
 impl Convolutions {
     fn new(n: usize) -> Self {
         use thirdbody::convolution::ConvolutionPlan;
-        let plan = ConvolutionPlan::new(n, n, Parallelism::Sequential);
-        let spectrum = plan.kernel_spectrum(|i, j| 1.0 / (1.0 + (i * i + j * j) as f64).sqrt());
+        let plan = ConvolutionPlan::new(n, n, Parallelism::Sequential).expect("n > 0");
+        let spectrum = plan
+            .kernel_spectrum(|i, j| 1.0 / (1.0 + (i * i + j * j) as f64).sqrt())
+            .expect("a full plan");
         let mut c = Convolutions {
             floor: Floor::new(n),
             library: plan.convolver(),
@@ -187,7 +189,8 @@ impl Convolutions {
                 .map(|_| {
                     let t = Instant::now();
                     self.library
-                        .apply(&self.spectrum, &self.field, &mut self.out);
+                        .apply(&self.spectrum, &self.field, &mut self.out)
+                        .expect("the plan's sizes");
                     t.elapsed().as_secs_f64()
                 })
                 .collect(),

@@ -104,18 +104,24 @@ impl KernelCache {
         self.spectra.clear();
     }
 
-    /// The DC-FFT plan for fields of `nx x ny` cells.
-    pub fn plan(&mut self, nx: usize, ny: usize, parallelism: Parallelism) -> Arc<ConvolutionPlan> {
+    /// The DC-FFT plan for fields of `nx x ny` cells; a grid without cells is an
+    /// error ([`ConvolutionPlan::new`]).
+    pub fn plan(
+        &mut self,
+        nx: usize,
+        ny: usize,
+        parallelism: Parallelism,
+    ) -> Result<Arc<ConvolutionPlan>> {
         let key: PlanKey = ([nx, ny], parallelism);
         if let Some(k) = self.plans.iter().position(|(k, _)| *k == key) {
             let entry = self.plans.remove(k);
             let plan = Arc::clone(&entry.1);
             self.plans.push(entry);
-            return plan;
+            return Ok(plan);
         }
-        let plan = ConvolutionPlan::new(nx, ny, parallelism);
+        let plan = ConvolutionPlan::new(nx, ny, parallelism)?;
         keep(&mut self.plans, (key, Arc::clone(&plan)), self.capacity);
-        plan
+        Ok(plan)
     }
 
     /// The surface kernel of `body` on `grid`'s cells at sliding speed `velocity`,
@@ -196,7 +202,7 @@ mod tests {
     fn a_held_spectrum_is_shared_and_equals_a_fresh_one() {
         let grid = Grid::centred(16, 12, 0.5, [0.0, 0.0]).unwrap();
         let mut cache = KernelCache::new();
-        let plan = cache.plan(16, 12, Parallelism::Sequential);
+        let plan = cache.plan(16, 12, Parallelism::Sequential).unwrap();
         let first = cache
             .surface_spectrum(&coated(0.37), &grid, &plan, 1.0)
             .unwrap();
@@ -224,7 +230,7 @@ mod tests {
     fn capacity_bounds_what_is_held_and_clear_empties_it() {
         let grid = Grid::centred(8, 8, 0.5, [0.0, 0.0]).unwrap();
         let mut cache = KernelCache::with_capacity(2);
-        let plan = cache.plan(8, 8, Parallelism::Sequential);
+        let plan = cache.plan(8, 8, Parallelism::Sequential).unwrap();
         for t in [0.1, 0.2, 0.3] {
             cache
                 .surface_spectrum(&coated(t), &grid, &plan, 1.0)

@@ -262,19 +262,19 @@ impl InfluenceOperator for ConvolutionOperator {
         if nx * ny >= TRIM_MIN_CELLS && self.kernel.is_even() {
             if let Some(support) = Support::of(p, nx, ny) {
                 if let Some((convolver, spectrum)) = self.trimmed_for(&support) {
-                    convolver.apply(spectrum, p, w);
+                    convolver.convolve(spectrum, p, w);
                     return;
                 }
             }
         }
         if self.kernel.has_values() {
-            self.convolver.apply(&self.kernel, p, w);
+            self.convolver.convolve(&self.kernel, p, w);
         } else {
             let plan = self.convolver.plan();
             let full = self
                 .full
                 .get_or_insert_with(|| plan.respectrum(&self.kernel));
-            self.convolver.apply(full, p, w);
+            self.convolver.convolve(full, p, w);
         }
     }
     fn add_sparse_update(&mut self, update: SparseUpdate<'_>) -> bool {
@@ -416,7 +416,7 @@ mod tests {
         let quadrant: Vec<f64> = (0..nx * ny)
             .map(|k| kernel((k % nx) as i64, (k / nx) as i64))
             .collect();
-        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
+        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential).unwrap();
         let spectrum = Arc::new(plan.even_kernel_spectrum(&quadrant));
         // The operator gets the kernel as its quadrant only, as from a KernelCache.
         let lazy = Arc::new(plan.even_kernel(quadrant.clone()).unwrap());
@@ -440,7 +440,7 @@ mod tests {
                 .collect();
             let (mut fast, mut full) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
             op.apply(&field, &mut fast).unwrap();
-            reference.apply(&spectrum, &field, &mut full);
+            reference.apply(&spectrum, &field, &mut full).unwrap();
             let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (a, b) in fast.iter().zip(&full) {
                 assert!((a - b).abs() < 1e-13 * scale, "radius {radius}");
@@ -465,9 +465,9 @@ mod tests {
 
     #[test]
     fn a_kernel_of_another_grid_is_an_error() {
-        let kernel_plan = ConvolutionPlan::new(12, 10, Parallelism::Sequential);
+        let kernel_plan = ConvolutionPlan::new(12, 10, Parallelism::Sequential).unwrap();
         let kernel = Arc::new(kernel_plan.even_kernel(vec![1.0; 120]).unwrap());
-        let plan = ConvolutionPlan::new(10, 12, Parallelism::Sequential);
+        let plan = ConvolutionPlan::new(10, 12, Parallelism::Sequential).unwrap();
         let e = ConvolutionOperator::new(plan.convolver(), kernel)
             .err()
             .unwrap();
@@ -481,7 +481,7 @@ mod tests {
 
     #[test]
     fn slices_of_another_length_are_errors_naming_the_argument() {
-        let plan = ConvolutionPlan::new(6, 5, Parallelism::Sequential);
+        let plan = ConvolutionPlan::new(6, 5, Parallelism::Sequential).unwrap();
         let kernel = Arc::new(plan.even_kernel(vec![1.0; 30]).unwrap());
         let mut convolution = ConvolutionOperator::new(plan.convolver(), kernel).unwrap();
         let mut dense = DenseOperator::from_fn(30, |i, j| 1.0 / (1.0 + i.abs_diff(j) as f64));
@@ -530,7 +530,7 @@ mod tests {
         let quadrant: Vec<f64> = (0..nx * ny)
             .map(|k| kernel((k % nx) as i64, (k / nx) as i64))
             .collect();
-        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
+        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential).unwrap();
         let kernel = Arc::new(plan.even_kernel(quadrant).unwrap());
         let mut op = ConvolutionOperator::new(plan.convolver(), kernel).unwrap();
         let cells = [(5, 0.5), (7 * nx + 39, -1.5), (29 * nx + 20, 2.0)];

@@ -59,7 +59,7 @@ impl Case {
         kernels: &mut KernelCache,
         parallelism: Parallelism,
     ) -> Result<ContactProblem> {
-        let plan = kernels.plan(grid.nx, grid.ny, parallelism);
+        let plan = kernels.plan(grid.nx, grid.ny, parallelism)?;
         let velocity = self.velocity();
         let spectrum = kernels.surface_spectrum(&self.body, grid, &plan, velocity)?;
         let datum_shift = spectrum.datum_shift();
@@ -164,16 +164,11 @@ impl ContactProblem {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::case_file::parse_case_file;
     use crate::operator::DenseOperator;
 
     #[test]
     fn parts_of_the_wrong_size_are_an_input_error_naming_the_argument() {
-        let text = "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
-                    poisson = 0.3\n[loading]\nnormal_load = 5e-6\n[grid]\ncells = [8, 8]\n";
-        let mut no_maps =
-            |_: &str, _: f64| -> Result<crate::HeightMap> { unreachable!("no height map") };
-        let case = parse_case_file(text, &mut no_maps).unwrap().case;
+        let case = crate::test_cases::parse(crate::test_cases::HERTZ);
         let grid = Grid::centred(8, 8, 0.01, [0.0, 0.0]).unwrap();
         let parts = |n_operator: usize, n_shape: usize, n_slope: usize| {
             ContactProblem::from_parts(

@@ -14,7 +14,8 @@
 //! closed forms and explicit sums); the operator application (direct sums instead
 //! of DC-FFT), the linear solver (LU instead of GMRES/CG), the contact-set rule and
 //! the treatment of the layer (a dense Jacobian instead of row sweeps and a
-//! triangular preconditioner) are its own.
+//! triangular preconditioner) are its own. The module also holds the direct
+//! summation the DC-FFT is tested against ([`direct_convolution`]).
 
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat};
@@ -30,6 +31,40 @@ use crate::solution::{Method, Solution, SolveInfo};
 
 /// Largest grid the dense reference accepts (cells).
 pub const MAX_REFERENCE_CELLS: usize = 80 * 80;
+
+/// `out = K (*) field` by direct O(n^2) summation over the `nx x ny` cells, `K` given
+/// at every cell offset `(di, dj)`: the obviously correct convolution the DC-FFT
+/// ([`crate::convolution`]) is tested against. A `field` or `out` of another length
+/// than `nx * ny` is an [`Error::InvalidValue`] naming it.
+pub fn direct_convolution(
+    nx: usize,
+    ny: usize,
+    kernel: impl Fn(i64, i64) -> f64,
+    field: &[f64],
+    out: &mut [f64],
+) -> Result<()> {
+    for (name, len) in [("field", field.len()), ("out", out.len())] {
+        if len != nx * ny {
+            return Err(Error::invalid(
+                name,
+                format!("{len} values"),
+                &format!("{} values, one per cell of {nx} x {ny}", nx * ny),
+            ));
+        }
+    }
+    for j in 0..ny {
+        for i in 0..nx {
+            let mut s = 0.0;
+            for l in 0..ny {
+                for k in 0..nx {
+                    s += kernel(i as i64 - k as i64, j as i64 - l as i64) * field[l * nx + k];
+                }
+            }
+            out[j * nx + i] = s;
+        }
+    }
+    Ok(())
+}
 
 /// Solves `case` on the fixed window `grid` with the dense method.
 pub fn solve_dense(case: &Case, grid: &Grid, tolerance: f64) -> Result<Solution> {

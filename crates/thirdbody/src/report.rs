@@ -359,10 +359,7 @@ mod tests {
         ] {
             assert!(line.contains_key(key), "{key}");
         }
-        let point = report_keys(
-            "[slider]\nshape = \"sphere\"\nradius = 1.0\n[substrate]\nyoung = 1.0\n\
-             poisson = 0.3\n[loading]\nnormal_load = 1e-6\n[grid]\ncells = [16, 16]\n",
-        );
+        let point = report_keys(crate::test_cases::HERTZ);
         for key in Y_KEYS {
             assert!(point.contains_key(key), "{key}");
         }

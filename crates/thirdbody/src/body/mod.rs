@@ -194,7 +194,9 @@ pub fn surface_kernel(
     };
     let spectrum = match kernel {
         SurfaceKernel::Even { quadrant, .. } => plan.even_kernel(quadrant)?,
-        kernel @ SurfaceKernel::EvenInY { .. } => plan.kernel_spectrum(|di, dj| kernel.at(di, dj)),
+        kernel @ SurfaceKernel::EvenInY { .. } => {
+            plan.kernel_spectrum(|di, dj| kernel.at(di, dj))?
+        }
     };
     Ok(spectrum.with_datum_shift(shift))
 }

@@ -87,7 +87,7 @@ impl SurfaceInverse {
     /// `out = M^-1 r` for an `r` that is zero off the contact set; the caller reads
     /// `out` on the contact set only.
     fn apply(&mut self, r: &[f64], out: &mut [f64]) {
-        self.convolver.apply(&self.spectrum, r, out);
+        self.convolver.convolve(&self.spectrum, r, out);
     }
 }
 

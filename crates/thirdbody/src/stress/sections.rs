@@ -56,20 +56,20 @@ pub(crate) fn planes(
         for (c, o) in out.iter_mut().enumerate() {
             let table: &InfluenceTable = table;
             let (cx, cy) = (nx as i64 - 1, ny as i64 - 1);
-            let spectrum =
-                plan.kernel_spectrum(|di, dj| table.get(c, (di + cx) as usize, (dj + cy) as usize));
+            let spectrum = plan
+                .offsets_spectrum(|di, dj| table.get(c, (di + cx) as usize, (dj + cy) as usize));
             o.resize(n, 0.0);
-            conv.apply_to_transformed(&spectrum, o);
+            conv.multiply_transformed(&spectrum, o);
         }
         out
     };
     let per_depth: Vec<Components> = if depths.len() > 1 {
-        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Sequential);
+        let plan = ConvolutionPlan::for_grid(nx, ny, Parallelism::Sequential);
         per_thread_map(
             depths,
             || {
                 let mut conv = plan.convolver();
-                conv.transform_field(pressure);
+                conv.transform(pressure);
                 (conv, InfluenceTable::default())
             },
             |(conv, table), &z| {
@@ -79,9 +79,9 @@ pub(crate) fn planes(
             },
         )
     } else {
-        let plan = ConvolutionPlan::new(nx, ny, Parallelism::Rayon);
+        let plan = ConvolutionPlan::for_grid(nx, ny, Parallelism::Rayon);
         let mut conv = plan.convolver();
-        conv.transform_field(pressure);
+        conv.transform(pressure);
         let mut table = InfluenceTable::default();
         depths
             .iter()

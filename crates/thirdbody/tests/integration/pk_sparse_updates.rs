@@ -54,7 +54,9 @@ fn solve_on(case: &Case, grid: &Grid, allow_sparse: bool) -> (Solution, usize) {
         ..SolverParams::default()
     };
     let mut kernels = KernelCache::new();
-    let plan = kernels.plan(grid.nx(), grid.ny(), params.parallelism);
+    let plan = kernels
+        .plan(grid.nx(), grid.ny(), params.parallelism)
+        .unwrap();
     let spectrum = kernels
         .surface_spectrum(&case.body, grid, &plan, case.velocity())
         .unwrap();

@@ -4,7 +4,8 @@
 //! (a bare body) and semi-smooth Newton (the paper's layer), on grids large enough
 //! (>= 128²) that the parallel paths are taken.
 
-use thirdbody::convolution::{direct_convolution, ConvolutionPlan, PARALLEL_MIN_CELLS};
+use thirdbody::convolution::{ConvolutionPlan, PARALLEL_MIN_CELLS};
+use thirdbody::reference::direct_convolution;
 use thirdbody::*;
 
 use crate::bundled::bundled;
@@ -34,14 +35,14 @@ fn parallel_convolution_is_the_sequential_one_and_the_direct_sum() {
         })
         .collect();
     let run = |parallelism: Parallelism| {
-        let plan = ConvolutionPlan::new(nx, ny, parallelism);
-        let spectrum = plan.kernel_spectrum(kernel);
+        let plan = ConvolutionPlan::new(nx, ny, parallelism).unwrap();
+        let spectrum = plan.kernel_spectrum(kernel).unwrap();
         let mut out = vec![0.0; nx * ny];
-        plan.convolver().apply(&spectrum, &field, &mut out);
+        plan.convolver().apply(&spectrum, &field, &mut out).unwrap();
         let mut again = vec![0.0; nx * ny];
         let mut conv = plan.convolver();
-        conv.transform_field(&field);
-        conv.apply_to_transformed(&spectrum, &mut again);
+        conv.transform_field(&field).unwrap();
+        conv.apply_to_transformed(&spectrum, &mut again).unwrap();
         assert_eq!(out, again, "apply and transform + apply agree");
         out
     };
@@ -74,12 +75,14 @@ fn parallel_convolution_is_the_sequential_one_and_the_direct_sum() {
     }
     // The small-grid reference of the unit tests still holds for a tiny grid.
     let (sx, sy) = (9, 7);
-    let plan = ConvolutionPlan::new(sx, sy, Parallelism::Rayon);
-    let spectrum = plan.kernel_spectrum(kernel);
+    let plan = ConvolutionPlan::new(sx, sy, Parallelism::Rayon).unwrap();
+    let spectrum = plan.kernel_spectrum(kernel).unwrap();
     let small: Vec<f64> = (0..sx * sy).map(|k| (k % 5) as f64).collect();
     let (mut fast, mut slow) = (vec![0.0; sx * sy], vec![0.0; sx * sy]);
-    plan.convolver().apply(&spectrum, &small, &mut fast);
-    direct_convolution(sx, sy, kernel, &small, &mut slow);
+    plan.convolver()
+        .apply(&spectrum, &small, &mut fast)
+        .unwrap();
+    direct_convolution(sx, sy, kernel, &small, &mut slow).unwrap();
     for k in 0..sx * sy {
         assert!((fast[k] - slow[k]).abs() < 1e-12 * 20.0);
     }
