@@ -20,7 +20,7 @@ use std::time::Instant;
 use numpy::{PyArray1, PyArray2, PyArrayDyn};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyTuple};
 use thirdbody::case_file::{parse_case_file, CaseFile};
 use thirdbody::{KernelCache, Progress};
 
@@ -269,11 +269,16 @@ impl Case {
         &self.text
     }
 
-    /// The grid's cell counts `(nx, ny)` (`(nx, 1)` for a line contact).
+    /// The grid's cell counts, as the fields' shape: `(nx, ny)`, or `(nx,)` for a
+    /// line contact.
     #[getter]
-    fn cells(&self) -> (usize, usize) {
+    fn cells<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
         let [nx, ny] = self.file.case.grid.cells;
-        (nx, ny)
+        if self.file.case.slider.is_line() {
+            PyTuple::new(py, [nx])
+        } else {
+            PyTuple::new(py, [nx, ny])
+        }
     }
 
     /// SHA-256 of the canonical case (the `case_hash` of `summary.json`).
@@ -605,9 +610,15 @@ fn progress_dict<'py>(
         Progress::Window { attempt, grid } => {
             d.set_item("event", "window")?;
             d.set_item("window", attempt)?;
-            d.set_item("cells", (grid.nx(), grid.ny()))?;
+            // The fields' shape: one axis for a line contact.
             let [wx, wy] = grid.half_widths();
-            d.set_item("half_width", (wx, wy))?;
+            if grid.is_line() {
+                d.set_item("cells", (grid.nx(),))?;
+                d.set_item("half_width", (wx,))?;
+            } else {
+                d.set_item("cells", (grid.nx(), grid.ny()))?;
+                d.set_item("half_width", (wx, wy))?;
+            }
         }
         Progress::Iteration {
             iteration,

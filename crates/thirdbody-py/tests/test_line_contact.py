@@ -55,8 +55,9 @@ def test_a_line_contact_has_1d_fields_and_no_y(line):
 
 
 def test_a_point_contact_keeps_its_2d_fields():
-    point = thirdbody.solve(thirdbody.Case.from_file(ROOT / "examples" / "hertz.toml"))
-    assert point.pressure.shape == (128, 128)
+    case = thirdbody.Case.from_file(ROOT / "examples" / "hertz.toml")
+    point = thirdbody.solve(case)
+    assert point.pressure.shape == (128, 128) == case.cells
     assert not point.is_line and point.y is not None
     assert "contact" not in point.summary
     for key in Y_KEYS:
@@ -91,9 +92,14 @@ def test_a_profile_given_as_an_array_equals_the_same_npy_file_and_pickles(tmp_pa
             '[grid]\ncells = 512\nhalf_width = 0.05\n')
     from_file = thirdbody.Case.from_toml(text, base_dir=tmp_path)
     assert from_array.case_hash == from_file.case_hash
-    a, b = thirdbody.solve(from_array), thirdbody.solve(from_file)
+    events = []
+    a, b = thirdbody.solve(from_array, progress=events.append), thirdbody.solve(from_file)
     np.testing.assert_array_equal(a.pressure, b.pressure)
     assert a.is_line and a.pressure.shape == (512,)
+    # The case's cells and the progress events' cells have the fields' shape.
+    assert from_array.cells == (512,)
+    windows = [e for e in events if e["event"] == "window"]
+    assert windows and all(e["cells"] == (512,) and len(e["half_width"]) == 1 for e in windows)
     again = pickle.loads(pickle.dumps(from_array))
     assert again.case_hash == from_array.case_hash
     # A 2-D map given as a profile names the file and the other shape.

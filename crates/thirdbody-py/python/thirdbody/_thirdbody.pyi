@@ -41,8 +41,9 @@ class Case:
     def toml(self) -> str:
         """The case file's text this case was parsed from."""
     @property
-    def cells(self) -> Tuple[int, int]:
-        """The grid's cell counts ``(nx, ny)`` (``(nx, 1)`` for a line contact)."""
+    def cells(self) -> Tuple[int, ...]:
+        """The grid's cell counts as the fields' shape: ``(nx, ny)``, or ``(nx,)`` for a
+        line contact."""
     @property
     def case_hash(self) -> str:
         """SHA-256 of the canonical case (``case_hash`` of summary.json)."""
