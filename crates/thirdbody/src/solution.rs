@@ -28,9 +28,11 @@ pub enum Method {
 /// How the solve went.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SolveInfo {
-    /// Algorithm used.
+    /// Algorithm that converged (Newton also when it took over from conjugate
+    /// gradients that did not).
     pub method: Method,
-    /// Outer iterations (CG steps or Newton steps) of the final window.
+    /// Outer iterations (CG steps or Newton steps; both summed when Newton took
+    /// over) of the final window.
     pub iterations: usize,
     /// Inner Krylov iterations in total (0 for CG).
     pub linear_iterations: usize,

@@ -90,3 +90,54 @@ fn a_coating_as_thick_as_the_contact_converges_with_the_grid() {
         assert!((a / finest.0 - 1.0).abs() < 1e-3 && (p / finest.1 - 1.0).abs() < 1e-3);
     }
 }
+
+/// A coating a thousand times stiffer than its substrate and a hundredth of the
+/// contact's half-width thick: unpreconditioned conjugate gradients crawl on its
+/// kernel (about 3,800 iterations at 256 cells, past the default 2,000; on finer
+/// grids they stall), and the automatic choice hands the solve to semi-smooth Newton
+/// from their last iterate. The answer must be the discrete problem's: the pressure
+/// of conjugate gradients allowed to run to the end on the same window (another
+/// algorithm and stopping rule), and the load balanced.
+#[test]
+fn a_thin_coating_far_stiffer_than_its_substrate_solves_on_the_default_parameters() {
+    let (a_sub, _) = hertz(1.0);
+    let case = coated(1000.0, 0.01 * a_sub, 256);
+    let auto = solve(&case, &SolverParams::default()).unwrap();
+    assert_eq!(auto.info.method, Method::SemismoothNewton);
+    let load: f64 = auto.pressure.iter().sum::<f64>() * auto.grid.cell_measure();
+    assert!((load / LOAD - 1.0).abs() < 1e-10, "load {load:e}");
+    let mut fixed = case.clone();
+    fixed.grid.half_width = Some(auto.grid.half_widths());
+    fixed.grid.centre = Some(auto.grid.centre());
+    // Both to a residual of 1e-12: on a kernel this ill-conditioned two solutions
+    // at 1e-10 differ by 3e-5 of the peak.
+    let tight = |method, max_iterations| SolverParams {
+        tolerance: 1e-12,
+        max_iterations,
+        method,
+        ..SolverParams::default()
+    };
+    let auto = solve(&fixed, &tight(None, 2000)).unwrap();
+    assert_eq!(auto.info.method, Method::SemismoothNewton);
+    let cg = solve(&fixed, &tight(Some(Method::PolonskyKeer), 100_000)).unwrap();
+    assert_eq!(cg.grid.len(), auto.grid.len());
+    assert!(
+        cg.info.iterations > 2000,
+        "{} iterations",
+        cg.info.iterations
+    );
+    let peak = cg.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+    let worst = cg
+        .pressure
+        .iter()
+        .zip(&auto.pressure)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    eprintln!(
+        "CG {} iterations; automatic: {} iterations, {} linear; max |dp| / p_max = {:.1e}",
+        cg.info.iterations,
+        auto.info.iterations,
+        auto.info.linear_iterations,
+        worst / peak
+    );
+    assert!(worst <= 1e-6 * peak, "max |dp| = {:e} p_max", worst / peak);
+}

@@ -560,8 +560,20 @@ pub fn solve_problem(
             if cold {
                 p = window::hertz_like_guess(&grid, &problem.shape, &problem.estimate);
             }
-            let r = polonsky_keer::polonsky_keer(problem, winkler, &mut p, params, observer)?;
-            (Method::PolonskyKeer, r)
+            match polonsky_keer::polonsky_keer(problem, winkler, &mut p, params, observer) {
+                Ok(r) => (Method::PolonskyKeer, r),
+                // Conjugate gradients carry no preconditioner: on a kernel whose
+                // spectrum spans many decades (a thin coating a thousand times
+                // stiffer than its substrate) they crawl or stall. Unless asked for
+                // by name, semi-smooth Newton (GMRES preconditioned by the inverse
+                // surface operator) takes over from their last iterate.
+                Err(Error::NoConvergence { iterations, .. }) if params.method.is_none() => {
+                    let mut r = newton::semismooth_newton(problem, &mut p, params, observer)?;
+                    r.iterations += iterations;
+                    (Method::SemismoothNewton, r)
+                }
+                Err(e) => return Err(e),
+            }
         }
         None => {
             if cold {
