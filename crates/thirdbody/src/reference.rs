@@ -208,6 +208,7 @@ fn solve_dense_with(
                     linear_iterations: 0,
                     operator_products: 0,
                     residual: history.last().copied().unwrap_or(0.0),
+                    tolerance,
                     windows: 1,
                     history,
                 },

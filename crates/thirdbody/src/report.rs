@@ -92,9 +92,10 @@ pub const FRICTION_NOISE: f64 = 1e-9;
 /// Sentences saying where `solution` of `case` lies outside the model's
 /// assumptions: a contact or an approach that is not small against the slider's
 /// radius, a friction coefficient above 1 (the small-slope hysteresis friction of
-/// paper eq. 12 is then meaningless), or friction and dissipated power that
+/// paper eq. 12 is then meaningless), friction and dissipated power that
 /// disagree by more than [`MAX_ENERGY_IMBALANCE`] (the grid does not resolve the
-/// layer).
+/// layer), or a solve that stalled short of its tolerance and returned its best
+/// iterate ([`crate::contact::STALLED_BUT_SOLVED`]).
 pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
     let s = solution.summary();
     let r = case.slider.equivalent_radius();
@@ -132,6 +133,17 @@ pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
     }
     if let Some(message) = energy_balance_warning(case, &s) {
         out.push(message);
+    }
+    let info = &solution.info;
+    if info.residual > info.tolerance {
+        out.push(format!(
+            "the solver stopped at a residual of {:.1e}, above the tolerance {:.1e}: the \
+             iteration cycled between contact sets that differ at the contact's edge (a \
+             feature narrower than a cell there, e.g. a glassy leading edge), so the \
+             discrete problem has no closer solution on this grid; the result is its \
+             best iterate (another cell count may reach the tolerance)",
+            info.residual, info.tolerance
+        ));
     }
     out
 }

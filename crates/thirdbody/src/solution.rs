@@ -41,6 +41,10 @@ pub struct SolveInfo {
     pub operator_products: usize,
     /// Final relative complementarity residual (see the contact module).
     pub residual: f64,
+    /// The residual the solve was asked for (`solver.tolerance`). `residual` is above
+    /// it only when the iteration stalled after reaching
+    /// [`crate::contact::STALLED_BUT_SOLVED`]; the report then warns.
+    pub tolerance: f64,
     /// Windows tried (the automatic window may enlarge or refit).
     pub windows: usize,
     /// Residual after each outer iteration of the final window.

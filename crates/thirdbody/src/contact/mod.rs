@@ -13,6 +13,7 @@
 //! whose contact reaches the window's edge is never returned.
 
 mod newton;
+pub use newton::STALLED_BUT_SOLVED;
 mod polonsky_keer;
 pub(crate) mod window;
 
@@ -663,7 +664,7 @@ pub fn solve_problem(
             (Method::SemismoothNewton, r)
         }
     };
-    finish(problem, p, method, report)
+    finish(problem, p, method, report, params.tolerance)
 }
 
 /// Most solves again with the contacts' leading edges located inside their cells
@@ -693,6 +694,7 @@ fn finish(
     mut p: Vec<f64>,
     method: Method,
     report: SolveReport,
+    tolerance: f64,
 ) -> Result<Solution> {
     let grid = problem.grid;
     let n = grid.len();
@@ -773,6 +775,7 @@ fn finish(
             linear_iterations: report.linear_iterations,
             operator_products: problem.influence.products(),
             residual: report.residual,
+            tolerance,
             windows: 1,
             history: report.history,
         },
