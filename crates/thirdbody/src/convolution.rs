@@ -31,7 +31,7 @@ pub enum Parallelism {
 }
 
 /// FFT plans for the DC-FFT of one grid size, on a wrap-around grid of `px x py`
-/// (`2nx x 2ny` unless trimmed to a field's support, see [`needed_padding`]).
+/// (`2nx x 2ny` unless trimmed to a field's support, see `needed_padding`).
 pub struct ConvolutionPlan {
     nx: usize,
     ny: usize,

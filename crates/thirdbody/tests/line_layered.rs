@@ -163,9 +163,16 @@ fn an_unresolved_edge_peak_is_flagged_until_the_grid_resolves_it() {
         let error = peak / reference - 1.0;
         eprintln!("{cells} cells: peak {error:+.2e} from 8,192 cells, flagged {flagged}");
         assert_eq!(flagged, warned, "{cells} cells");
-        assert!(if warned { error.abs() > 1e-2 } else { error.abs() < 1e-3 });
+        assert!(if warned {
+            error.abs() > 1e-2
+        } else {
+            error.abs() < 1e-3
+        });
     }
     for cells in [256, 4096] {
-        assert!(!edge_warning(&coated(1.0, a_sub, cells)).1, "Hertz, {cells} cells");
+        assert!(
+            !edge_warning(&coated(1.0, a_sub, cells)).1,
+            "Hertz, {cells} cells"
+        );
     }
 }
