@@ -94,8 +94,9 @@ pub const FRICTION_NOISE: f64 = 1e-9;
 /// radius, a friction coefficient above 1 (the small-slope hysteresis friction of
 /// paper eq. 12 is then meaningless), friction and dissipated power that
 /// disagree by more than [`MAX_ENERGY_IMBALANCE`] (the grid does not resolve the
-/// layer), or a solve that stalled short of its tolerance and returned its best
-/// iterate ([`crate::contact::STALLED_BUT_SOLVED`]).
+/// layer), a peak pressure at the contact's edge that the cells do not resolve (no
+/// layer; [`EDGE_PEAK_CELLS`]), or a solve that stalled short of its tolerance and
+/// returned its best iterate ([`crate::contact::STALLED_BUT_SOLVED`]).
 pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
     let s = solution.summary();
     let r = case.slider.equivalent_radius();
