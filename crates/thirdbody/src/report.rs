@@ -193,8 +193,9 @@ fn edge_peak_warning(case: &Case, solution: &Solution) -> Option<String> {
     unloaded.then(|| {
         format!(
             "the pressure peaks within {r} cells of the contact's edge ({at}): the \
-             peak is narrower than the cells resolve (an edge concentration under a stiff \
-             thin coating, or a glassy leading edge), so max_pressure follows the cell \
+             peak is narrower than the cells resolve (e.g. an edge concentration under a \
+             stiff thin coating, a glassy leading edge, or a contact spot a few cells \
+             wide), so max_pressure follows the cell \
              size; refine the grid to converge it (the load, the contact's extent and the \
              friction converge sooner)"
         )
