@@ -6,6 +6,7 @@
 //! elastic body the solution converges with the grid, and its friction equals the
 //! energy balance's.
 
+mod cases;
 mod common;
 
 use common::rigid_base::{brent, Law, RigidBase};
@@ -16,26 +17,17 @@ const COMPLIANCE: f64 = 0.02;
 const VELOCITY: f64 = 0.01;
 const LOAD: f64 = 2e-4;
 
+/// The shared cylinder (radius `RADIUS`) under `LOAD` on a body of Young's modulus
+/// `young` with `layer` at `VELOCITY`.
 fn line_case(layer: Layer, young: f64, cells: usize) -> Case {
-    Case {
-        slider: Slider::Cylinder { radius: RADIUS },
-        body: Body::Homogeneous(Elastic {
-            young,
-            poisson: 0.3,
-        }),
-        layer: Some(layer),
-        loading: Loading {
-            normal_load: LOAD,
-            velocity: Some(VELOCITY),
-            reference_distance: None,
-        },
-        grid: GridSpec {
-            cells: [cells, 1],
-            half_width: None,
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    }
+    let mut case = cases::cylinder(LOAD, cells);
+    case.body = Body::Homogeneous(Elastic {
+        young,
+        poisson: 0.3,
+    });
+    case.layer = Some(layer);
+    case.loading.velocity = Some(VELOCITY);
+    case
 }
 
 /// The paper's sigmoid law (eq. 11), written out independently of the library.

@@ -6,6 +6,8 @@
 //! kernel itself is checked against direct quadrature of its transfer function in
 //! `body::stack_line`.
 
+mod cases;
+
 use std::f64::consts::PI;
 use thirdbody::*;
 
@@ -16,22 +18,9 @@ fn coated(coating: f64, thickness: f64, cells: usize) -> Case {
         young,
         poisson: 0.3,
     };
-    Case {
-        slider: Slider::Cylinder { radius: 1.0 },
-        body: Body::coated(material(coating), thickness, material(1.0)),
-        layer: None,
-        loading: Loading {
-            normal_load: LOAD,
-            velocity: None,
-            reference_distance: None,
-        },
-        grid: GridSpec {
-            cells: [cells, 1],
-            half_width: None,
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    }
+    let mut case = cases::cylinder(LOAD, cells);
+    case.body = Body::coated(material(coating), thickness, material(1.0));
+    case
 }
 
 /// Hertz's half-width and peak pressure on a half-space of Young's modulus `young`.

@@ -7,6 +7,8 @@
 //! tabulated by `tests/data/hunter_reference.py` and checked there against an
 //! independent boundary-element solution. The solver shares nothing with it.
 
+mod cases;
+
 use serde::Deserialize;
 use thirdbody::body::{SolidRheology, ViscoelasticHalfSpace};
 use thirdbody::*;
@@ -33,29 +35,18 @@ const A0: f64 = 0.01;
 fn hunter_case(ratio: f64, speed: f64, cells: usize) -> Case {
     let relaxed_star = 1.0 / (1.0 - POISSON * POISSON);
     let load = std::f64::consts::PI * relaxed_star * A0 * A0 / (4.0 * RADIUS);
-    Case {
-        slider: Slider::Cylinder { radius: RADIUS },
-        body: Body::Viscoelastic(ViscoelasticHalfSpace {
-            rheology: SolidRheology::Zener {
-                glassy_modulus: ratio,
-                relaxed_modulus: 1.0,
-                relaxation_time: 1.0,
-            },
-            poisson: POISSON,
-        }),
-        layer: None,
-        loading: Loading {
-            normal_load: load,
-            velocity: Some(speed * A0),
-            reference_distance: None,
+    // The shared cylinder has the radius RADIUS.
+    let mut case = cases::cylinder(load, cells);
+    case.body = Body::Viscoelastic(ViscoelasticHalfSpace {
+        rheology: SolidRheology::Zener {
+            glassy_modulus: ratio,
+            relaxed_modulus: 1.0,
+            relaxation_time: 1.0,
         },
-        grid: GridSpec {
-            cells: [cells, 1],
-            half_width: None,
-            centre: None,
-        },
-        units: Units::Dimensionless,
-    }
+        poisson: POISSON,
+    });
+    case.loading.velocity = Some(speed * A0);
+    case
 }
 
 fn reference() -> Vec<Row> {

@@ -1133,6 +1133,24 @@ mod tests {
         }
     }
 
+    /// A glassy compliance and two branches: 0.5 at a retardation time of 0.2 and 2
+    /// at 7 (at speed 0.1, `one_branch(0.02)` and `one_branch(0.7)` scaled).
+    fn two_branches() -> CreepSeries {
+        CreepSeries {
+            glassy: 0.3,
+            branches: vec![
+                CreepBranch {
+                    compliance: 0.5,
+                    retardation_time: 0.2,
+                },
+                CreepBranch {
+                    compliance: 2.0,
+                    retardation_time: 7.0,
+                },
+            ],
+        }
+    }
+
     fn gaussian_grid(n: usize) -> (Vec<f64>, f64) {
         sample(n, 6.0, |x, y| (-(x * x + y * y) / 2.0).exp())
     }
@@ -1406,19 +1424,7 @@ mod tests {
     #[test]
     fn hysteresis_branches_add_and_scale_with_the_creep_length() {
         let (p, h) = hertz_grid(24);
-        let two = CreepSeries {
-            glassy: 0.3,
-            branches: vec![
-                CreepBranch {
-                    compliance: 0.5,
-                    retardation_time: 0.2,
-                },
-                CreepBranch {
-                    compliance: 2.0,
-                    retardation_time: 7.0,
-                },
-            ],
-        };
+        let two = two_branches();
         let d = dissipated_force(&two, 0.1, &p, 24, 24, h).unwrap();
         let a = 0.5 * dissipated_force(&one_branch(0.02), 1.0, &p, 24, 24, h).unwrap();
         let b = 2.0 * dissipated_force(&one_branch(0.7), 1.0, &p, 24, 24, h).unwrap();
@@ -1715,23 +1721,12 @@ mod tests {
     #[test]
     fn line_hysteresis_branches_add_and_trivial_cases_give_zero() {
         let (p, h) = line_gaussian_grid(48);
-        let two = CreepSeries {
-            glassy: 0.3,
-            branches: vec![
-                CreepBranch {
-                    compliance: 0.5,
-                    retardation_time: 0.2,
-                },
-                CreepBranch {
-                    compliance: 2.0,
-                    retardation_time: 7.0,
-                },
-                CreepBranch {
-                    compliance: 2.0,
-                    retardation_time: f64::INFINITY,
-                },
-            ],
-        };
+        // And a branch that never creeps, which dissipates nothing.
+        let mut two = two_branches();
+        two.branches.push(CreepBranch {
+            compliance: 2.0,
+            retardation_time: f64::INFINITY,
+        });
         let d = line_dissipated_force(&two, 0.1, &p, h).unwrap();
         let a = 0.5 * line_dissipated_force(&one_branch(0.02), 1.0, &p, h).unwrap();
         let b = 2.0 * line_dissipated_force(&one_branch(0.7), 1.0, &p, h).unwrap();

@@ -442,6 +442,25 @@ const DEGREE: usize = 16;
 /// Panel width in `ln k`.
 const LOG_PANEL: f64 = 0.1;
 
+/// The long-wave band's quadrature panels, each given to `add(lo, hi)`: `[0, knee]`,
+/// then geometric panels (ratio 1.25) up to `k_end`, each cut into pieces shorter
+/// than `4 / reach` so that a panel's rule resolves the oscillation at the farthest
+/// offset `reach` (0.64 of the shortest period of `J0(k r)` or `cos(k x)`).
+pub(crate) fn long_wave_panels(knee: f64, k_end: f64, reach: f64, add: &mut impl FnMut(f64, f64)) {
+    add(0.0, knee);
+    let mut lo = knee;
+    while lo < k_end {
+        let hi = (lo * 1.25).min(k_end);
+        let pieces = ((hi - lo) * reach / 4.0).ceil().max(1.0) as usize;
+        let step = (hi - lo) / pieces as f64;
+        for p in 0..pieces {
+            let a = lo + p as f64 * step;
+            add(a, a + step);
+        }
+        lo = hi;
+    }
+}
+
 impl Remainder {
     pub(super) fn new(
         stack: &Stack,
@@ -537,18 +556,7 @@ impl Remainder {
                     nodes.push((k, w * half * f));
                 }
             };
-            add(0.0, self.knee);
-            let mut lo = self.knee;
-            while lo < k_end {
-                let hi = (lo * 1.25).min(k_end);
-                let pieces = ((hi - lo) * r_hi / 4.0).ceil().max(1.0) as usize;
-                let step = (hi - lo) / pieces as f64;
-                for p in 0..pieces {
-                    let a = lo + p as f64 * step;
-                    add(a, a + step);
-                }
-                lo = hi;
-            }
+            long_wave_panels(self.knee, k_end, r_hi, &mut add);
             nodes
         };
         let r_max = 2f64.sqrt() * (nx.max(ny) as f64 + 1.0);

@@ -226,19 +226,7 @@ fn long_wave_kernel(remainder: &Remainder, nx: usize) -> Vec<f64> {
                 nodes.push((k, w * half * f));
             }
         };
-        let knee = remainder.knee.min(k_end);
-        add(0.0, knee);
-        let mut lo = knee;
-        while lo < k_end {
-            let hi = (lo * 1.25).min(k_end);
-            let pieces = ((hi - lo) * x_hi / 4.0).ceil().max(1.0) as usize;
-            let step = (hi - lo) / pieces as f64;
-            for p in 0..pieces {
-                let a = lo + p as f64 * step;
-                add(a, a + step);
-            }
-            lo = hi;
-        }
+        super::stack::long_wave_panels(remainder.knee.min(k_end), k_end, x_hi, &mut add);
         nodes
     };
     // Tiers of offsets: [0, GROUP), [GROUP, 2 GROUP), [2 GROUP, 4 GROUP), ...
