@@ -78,15 +78,8 @@ fn errors(case: &Case, reference: &RowReference) -> [f64; 5] {
 fn a_layer_on_a_rigid_base_is_one_row_of_the_row_solution() {
     let linear = Layer::maxwell(COMPLIANCE, 1.0, ComplianceLaw::Linear, Integration::Exact);
     let c = sigmoid(COMPLIANCE, 0.5, 0.005);
-    let nonlinear = Layer::maxwell(
-        COMPLIANCE,
-        1.0,
-        ComplianceLaw::Sigmoid {
-            delta: 0.5,
-            p0: 0.005,
-        },
-        Integration::Exact,
-    );
+    // The paper's layer: COMPLIANCE, T = 1, sigmoid delta = 0.5, p0 = 0.005.
+    let nonlinear = cases::paper_sigmoid_layer();
     for (name, layer, law) in [
         (
             "linear",
@@ -125,15 +118,7 @@ fn a_layer_on_a_rigid_base_is_one_row_of_the_row_solution() {
 /// 4096 cells).
 #[test]
 fn the_paper_layer_on_an_elastic_body_converges_with_the_grid() {
-    let layer = Layer::maxwell(
-        COMPLIANCE,
-        1.0,
-        ComplianceLaw::Sigmoid {
-            delta: 0.5,
-            p0: 0.005,
-        },
-        Integration::Exact,
-    );
+    let layer = cases::paper_sigmoid_layer();
     let results: Vec<[f64; 4]> = [512, 1024, 2048, 4096]
         .iter()
         .map(|&cells| {
