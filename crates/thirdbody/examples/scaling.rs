@@ -7,8 +7,8 @@
 
 use std::process::Command;
 use std::time::Instant;
-use thirdbody::reference::solve_dense;
 use thirdbody::*;
+use thirdbody_reference::solve_dense;
 
 #[path = "../tests/bundled/mod.rs"]
 mod bundled;

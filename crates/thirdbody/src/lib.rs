@@ -50,8 +50,6 @@ pub mod operator;
 mod passes;
 pub mod problem;
 pub mod provenance;
-#[cfg(feature = "reference")]
-pub mod reference;
 pub mod report;
 pub mod shape;
 pub mod solution;

@@ -137,6 +137,21 @@ impl ContactProblem {
         &self.shape
     }
 
+    /// The slider's slope `df/dx` at the cell centres (the layer's friction).
+    pub fn slope(&self) -> &[f64] {
+        &self.slope
+    }
+
+    /// The case's body.
+    pub fn body(&self) -> &Body {
+        &self.body
+    }
+
+    /// The sliding speed V (a viscoelastic body's kernel and dissipation use it).
+    pub fn velocity(&self) -> f64 {
+        self.velocity
+    }
+
     /// The normal load Q.
     pub fn load(&self) -> f64 {
         self.load

@@ -331,8 +331,8 @@ fn coated_body_goes_through_the_dc_fft_operator() {
     use thirdbody::body::surface_kernel;
     use thirdbody::convolution::ConvolutionPlan;
     use thirdbody::operator::{ConvolutionOperator, InfluenceOperator};
-    use thirdbody::reference::direct_convolution;
     use thirdbody::{Body, Grid, Parallelism};
+    use thirdbody_reference::direct_convolution;
     let (coating, substrate, thickness) = (elastic(3.0, 0.3), elastic(1.0, 0.3), 0.7);
     let (nx, ny, cell) = (12, 10, 0.5);
     let grid = Grid::centred(nx, ny, cell, [0.0, 0.0]).unwrap();

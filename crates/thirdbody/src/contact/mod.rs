@@ -105,7 +105,7 @@ impl SolverParams {
                 "solver.method",
                 "dense_reference",
                 "conjugate gradients or semi-smooth Newton (the dense reference is \
-                 thirdbody::reference::solve_dense)",
+                 thirdbody_reference::solve_dense, a test crate)",
             ));
         }
         Ok(())
@@ -670,7 +670,7 @@ pub fn solve_problem(
 /// Most solves again with the contacts' leading edges located inside their cells
 /// ([`crate::layer::LayerResponse::relocated`]; two or three suffice: an edge moves
 /// with the approach, which hardly depends on it).
-pub(crate) const MAX_RELOCATIONS: usize = 12;
+pub const MAX_RELOCATIONS: usize = 12;
 
 /// The gap `w_body + w_layer + f - D` at the pressure `p` and approach `approach`.
 fn gap_at(problem: &mut ContactProblem, p: &[f64], approach: f64) -> Vec<f64> {

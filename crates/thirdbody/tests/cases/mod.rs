@@ -140,7 +140,7 @@ pub fn rel(a: f64, b: f64) -> f64 {
 /// same grid: `(max |dp| / max p, relative difference of D, loaded cells)`.
 pub fn against_dense_reference(case: &Case, label: &str) -> (f64, f64, usize) {
     let fast = solve_to(case, 1e-13);
-    let dense = thirdbody::reference::solve_dense(case, &fast.grid, 1e-13)
+    let dense = thirdbody_reference::solve_dense(case, &fast.grid, 1e-13)
         .unwrap_or_else(|e| panic!("{label}: {e}"));
     let (pmax, diff) = peak_and_largest_difference(&fast.pressure, &dense.pressure);
     let loaded = fast.pressure.iter().filter(|&&p| p > 0.0).count();

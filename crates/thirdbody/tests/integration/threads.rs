@@ -5,8 +5,8 @@
 //! (>= 128²) that the parallel paths are taken.
 
 use thirdbody::convolution::{ConvolutionPlan, PARALLEL_MIN_CELLS};
-use thirdbody::reference::direct_convolution;
 use thirdbody::*;
+use thirdbody_reference::direct_convolution;
 
 use crate::bundled::bundled;
 

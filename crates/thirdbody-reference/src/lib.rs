@@ -1,7 +1,7 @@
-//! The paper's own method, kept as a test oracle and a benchmark baseline (behind
-//! the cargo feature `reference`): the dense system (6) — influence matrix
+//! The paper's own method, kept as a test oracle and a benchmark baseline (a crate
+//! of its own, used by the tests and the scaling example of `thirdbody`): the dense system (6) — influence matrix
 //! `A = A^(1) + A^(3)` (eq. 7), the body's part assembled entry by entry from the
-//! body's kernel formula ([`crate::body::BodyModel`]; eq. 9 or 10) and the layer's
+//! body's kernel formula ([`thirdbody::body::BodyModel`]; eq. 9 or 10) and the layer's
 //! part column by column from the layer's Jacobian (any rheology; for the paper's
 //! layer eq. 8 read with the loaded cell's compliance), plus the approach column and
 //! the load row — solved by dense LU inside an active-set loop: cells with negative
@@ -20,21 +20,21 @@
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat};
 
-use crate::case::Case;
-use crate::convolution::Parallelism;
-use crate::error::{Error, Result};
-use crate::grid::Grid;
-use crate::kernel_cache::KernelCache;
-use crate::layer::{load_weights, LayerResponse};
-use crate::problem::ContactProblem;
-use crate::solution::{Method, Solution, SolveInfo};
+use thirdbody::case::Case;
+use thirdbody::convolution::Parallelism;
+use thirdbody::error::{Error, Result};
+use thirdbody::grid::Grid;
+use thirdbody::layer::{load_weights, LayerResponse};
+use thirdbody::problem::ContactProblem;
+use thirdbody::solution::{Method, Solution, SolveInfo};
+use thirdbody::KernelCache;
 
 /// Largest grid the dense reference accepts (cells).
 pub const MAX_REFERENCE_CELLS: usize = 80 * 80;
 
 /// `out = K (*) field` by direct O(n^2) summation over the `nx x ny` cells, `K` given
 /// at every cell offset `(di, dj)`: the obviously correct convolution the DC-FFT
-/// ([`crate::convolution`]) is tested against. A `field` or `out` of another length
+/// ([`thirdbody::convolution`]) is tested against. A `field` or `out` of another length
 /// than `nx * ny` is an [`Error::InvalidValue`] naming it.
 pub fn direct_convolution(
     nx: usize,
@@ -73,7 +73,7 @@ pub fn solve_dense(case: &Case, grid: &Grid, tolerance: f64) -> Result<Solution>
     if n > MAX_REFERENCE_CELLS {
         return Err(Error::invalid(
             "grid.cells",
-            format!("{} x {}", grid.nx, grid.ny),
+            format!("{} x {}", grid.nx(), grid.ny()),
             "at most 80 x 80 cells for the dense reference solver",
         ));
     }
@@ -90,12 +90,12 @@ pub fn solve_dense_problem(problem: &ContactProblem, tolerance: f64) -> Result<S
     let mut relocated: Option<Box<dyn LayerResponse>> = None;
     let mut solves = 0;
     loop {
-        let response = relocated.as_deref().or(problem.layer.as_deref());
+        let response = relocated.as_deref().or(problem.layer());
         let solution = solve_dense_with(problem, response, tolerance)?;
         solves += 1;
         let moved = response.and_then(|l| l.relocated(&solution.pressure, &solution.gap));
         match moved {
-            Some(l) if solves <= crate::contact::MAX_RELOCATIONS => relocated = Some(l),
+            Some(l) if solves <= thirdbody::contact::MAX_RELOCATIONS => relocated = Some(l),
             _ => return Ok(solution),
         }
     }
@@ -107,13 +107,13 @@ fn solve_dense_with(
     response: Option<&dyn LayerResponse>,
     tolerance: f64,
 ) -> Result<Solution> {
-    let grid = &problem.grid;
+    let grid = problem.grid();
     let n = grid.len();
-    let (nx, ny) = (grid.nx, grid.ny);
+    let (nx, ny) = (grid.nx(), grid.ny());
     let kernel = problem
-        .body
+        .body()
         .model()
-        .surface_kernel(grid.cell, nx, ny, problem.velocity)?;
+        .surface_kernel(grid.cell(), nx, ny, problem.velocity())?;
     let influence = Mat::<f64>::from_fn(n, n, |a, b| {
         let di = (a % nx) as i64 - (b % nx) as i64;
         let dj = (a / nx) as i64 - (b / nx) as i64;
@@ -133,10 +133,10 @@ fn solve_dense_with(
         }
     }
     let weights = load_weights(&entries, n);
-    let f = problem.shape.clone();
-    let slope = problem.slope.clone();
+    let f = problem.shape().to_vec();
+    let slope = problem.slope().to_vec();
     let layer = response.map(|response| DenseLayer { response });
-    let load = problem.load;
+    let load = problem.load();
     let area = grid.cell_measure();
 
     // Start: every cell where the undeformed slider is below the mean height.
@@ -190,7 +190,7 @@ fn solve_dense_with(
                 .map_or(0.0, |l| l.response.dissipated_force(&p));
             return Ok(Solution {
                 grid: *grid,
-                body: problem.body.clone(),
+                body: problem.body().clone(),
                 pressure: p,
                 contact_edges: entries,
                 body_displacement: wb,
@@ -331,4 +331,33 @@ fn newton_on_set(
         history: Vec::new(),
         hint: "Newton on the dense reference system did not converge".into(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_direct_sum_refuses_fields_of_another_size_naming_them_and_writes_nothing() {
+        let kernel = |i: i64, j: i64| (1 + i.abs() + 2 * j.abs()) as f64;
+        let field: Vec<f64> = (0..30).map(|k| k as f64).collect();
+        let mut out = vec![0.0; 30];
+        let names = |r: Result<()>, name: &str| matches!(r, Err(Error::InvalidValue { field, .. }) if field == name);
+        assert!(names(
+            direct_convolution(6, 5, kernel, &field[1..], &mut out),
+            "field"
+        ));
+        assert!(names(
+            direct_convolution(6, 5, kernel, &field, &mut out[1..]),
+            "out"
+        ));
+        assert!(out.iter().all(|&v| v == 0.0));
+        // One value by hand: the corner cell (0, 0) sums K(-k, -l) f(k, l).
+        direct_convolution(6, 5, kernel, &field, &mut out).unwrap();
+        let by_hand: f64 = (0..5)
+            .flat_map(|l| (0..6).map(move |k| (l, k)))
+            .map(|(l, k)| kernel(-k, -l) * field[(l * 6 + k) as usize])
+            .sum();
+        assert_eq!(out[0], by_hand);
+    }
 }
