@@ -3,6 +3,8 @@
 //! the crate's Papkovich–Neuber potentials), and the window independence of one
 //! loaded cell's stress influence coefficients.
 
+use rayon::prelude::*;
+
 use thirdbody::stress::{InfluenceTable, LayeredStressKernels, OffsetLattice, Side, StressKernels};
 use thirdbody::Elastic;
 
@@ -198,7 +200,7 @@ fn kernels(k: &LayeredStressKernels, z: f64, n: usize) -> InfluenceTable {
 fn stress_coefficients_do_not_depend_on_the_window() {
     let a = 16.0;
     let sizes = [65usize, 129, 257];
-    let mut failures = Vec::new();
+    let mut runs = Vec::new();
     for ratio in [0.1, 3.0, 10.0, 30.0, 100.0] {
         for h1_over_a in [0.1, 0.5, 2.0] {
             let h1 = h1_over_a * a;
@@ -209,36 +211,42 @@ fn stress_coefficients_do_not_depend_on_the_window() {
                 (h1, Side::Below),
                 (2.0 * h1, Side::Below),
             ] {
-                let k = coated_kernels(elastic(ratio, 0.3), h1, elastic(1.0, 0.3), side);
-                let tables: Vec<InfluenceTable> =
-                    sizes.iter().map(|&n| kernels(&k, z, n)).collect();
-                let big = &tables[2];
-                let peak = big
-                    .values
-                    .iter()
-                    .flatten()
-                    .fold(0.0f64, |m, v| m.max(v.abs()));
-                let mut worst = 0.0f64;
-                for (&n, t) in sizes.iter().zip(&tables).take(2) {
-                    let shift = (sizes[2] - n) / 2;
-                    for c in 0..6 {
-                        for m in 0..n {
-                            for i in 0..n {
-                                let d = t.get(c, i, m) - big.get(c, i + shift, m + shift);
-                                worst = worst.max(d.abs() / peak);
-                            }
-                        }
-                    }
-                }
-                println!("E1/E2 {ratio:5} h1/a {h1_over_a:3} z {z:5.1} {side:?}: {worst:.1e} of the peak");
-                if worst > 1e-9 {
-                    failures.push(format!(
-                        "E1/E2 {ratio} h1/a {h1_over_a} z {z} {side:?}: {worst:.1e}"
-                    ));
-                }
+                runs.push((ratio, h1_over_a, z, side));
             }
         }
     }
+    // One (body, depth) per thread: the three tables are the test's cost.
+    let failures: Vec<String> = runs
+        .par_iter()
+        .filter_map(|&(ratio, h1_over_a, z, side)| {
+            let h1 = h1_over_a * a;
+            let k = coated_kernels(elastic(ratio, 0.3), h1, elastic(1.0, 0.3), side);
+            let tables: Vec<InfluenceTable> = sizes.iter().map(|&n| kernels(&k, z, n)).collect();
+            let big = &tables[2];
+            let peak = big
+                .values
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            let mut worst = 0.0f64;
+            for (&n, t) in sizes.iter().zip(&tables).take(2) {
+                let shift = (sizes[2] - n) / 2;
+                for c in 0..6 {
+                    for m in 0..n {
+                        for i in 0..n {
+                            let d = t.get(c, i, m) - big.get(c, i + shift, m + shift);
+                            worst = worst.max(d.abs() / peak);
+                        }
+                    }
+                }
+            }
+            println!(
+                "E1/E2 {ratio:5} h1/a {h1_over_a:3} z {z:5.1} {side:?}: {worst:.1e} of the peak"
+            );
+            (worst > 1e-9)
+                .then(|| format!("E1/E2 {ratio} h1/a {h1_over_a} z {z} {side:?}: {worst:.1e}"))
+        })
+        .collect();
     assert!(
         failures.is_empty(),
         "window dependence above 1e-9 of the peak:\n{}",
