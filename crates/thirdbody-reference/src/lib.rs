@@ -15,7 +15,10 @@
 //! of DC-FFT), the linear solver (LU instead of GMRES/CG), the contact-set rule and
 //! the treatment of the layer (a dense Jacobian instead of row sweeps and a
 //! triangular preconditioner) are its own. The module also holds the direct
-//! summation the DC-FFT is tested against ([`direct_convolution`]).
+//! summation the DC-FFT is tested against ([`direct_convolution`]), and FFT plans
+//! for the tests' own transforms ([`fft`]).
+
+pub mod fft;
 
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat};

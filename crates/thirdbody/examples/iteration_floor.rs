@@ -21,9 +21,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use realfft::num_complex::Complex;
-use realfft::RealFftPlanner;
-use rustfft::FftPlanner;
 use thirdbody::*;
+use thirdbody_reference::fft;
 
 #[path = "../tests/bundled/mod.rs"]
 mod bundled;
@@ -65,12 +64,10 @@ fn transpose(src: &[Complex<f64>], r: usize, c: usize, dst: &mut [Complex<f64>],
 
 impl Floor {
     fn new(n: usize) -> Self {
-        let mut real = RealFftPlanner::<f64>::new();
-        let mut complex = FftPlanner::<f64>::new();
-        let row_forward = real.plan_fft_forward(2 * n);
-        let row_inverse = real.plan_fft_inverse(2 * n);
-        let column_forward = complex.plan_fft_forward(2 * n);
-        let column_inverse = complex.plan_fft_inverse(2 * n);
+        let row_forward = fft::real_forward(2 * n);
+        let row_inverse = fft::real_inverse(2 * n);
+        let column_forward = fft::forward(2 * n);
+        let column_inverse = fft::inverse(2 * n);
         let scratch = row_forward
             .get_scratch_len()
             .max(row_inverse.get_scratch_len())

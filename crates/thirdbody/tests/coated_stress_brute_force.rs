@@ -24,7 +24,6 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
-use rustfft::FftPlanner;
 use thirdbody::stress::{stresses, Section, Side};
 use thirdbody::{solve, Body, Case, Elastic, GridSpec, Loading, Slider, SolverParams, Units};
 
@@ -43,7 +42,7 @@ fn elastic(young: f64) -> Elastic {
 
 /// In-place 2-D inverse FFT of an `m x m` row-major array (unnormalised).
 fn inverse_2d(data: &mut [Complex<f64>], m: usize) {
-    let fft = FftPlanner::<f64>::new().plan_fft_inverse(m);
+    let fft = thirdbody_reference::fft::inverse(m);
     data.par_chunks_mut(m).for_each(|row| fft.process(row));
     let mut column = vec![Complex::default(); m * m];
     // Transpose, transform the rows, transpose back.
@@ -217,7 +216,7 @@ fn short_wave_field(
             p[j * m + i] = Complex::new(pressure[j * nx + i], 0.0);
         }
     }
-    let forward = FftPlanner::<f64>::new().plan_fft_forward(m);
+    let forward = thirdbody_reference::fft::forward(m);
     p.par_chunks_mut(m).for_each(|row| forward.process(row));
     let mut t = vec![Complex::default(); m * m];
     for j in 0..m {

@@ -48,11 +48,12 @@
 #![allow(dead_code)]
 
 use rustfft::num_complex::Complex64;
-use rustfft::{Fft, FftPlanner};
+use rustfft::Fft;
 use std::f64::consts::PI;
 use std::sync::Arc;
 use thirdbody::body::homogeneous::rectangle_inverse_distance_integral;
 use thirdbody::body::viscoelastic::CreepSeries;
+use thirdbody_reference::fft;
 
 /// Love's normal surface displacement per unit plane-strain compliance at `(x, y)`
 /// under a unit pressure on `|x| <= a, |y| <= b`.
@@ -98,16 +99,15 @@ impl Convolution {
     pub fn new(source: [usize; 2], target: [usize; 2], kernel: impl Fn(i64, i64) -> f64) -> Self {
         let span = [source[0] + target[0] - 1, source[1] + target[1] - 1];
         let pad = [good_size(span[0]), good_size(span[1])];
-        let mut planner = FftPlanner::new();
         let mut c = Convolution {
             source,
             target,
             pad,
             spectrum: Vec::new(),
-            row_fwd: planner.plan_fft_forward(pad[0]),
-            row_inv: planner.plan_fft_inverse(pad[0]),
-            col_fwd: planner.plan_fft_forward(pad[1]),
-            col_inv: planner.plan_fft_inverse(pad[1]),
+            row_fwd: fft::forward(pad[0]),
+            row_inv: fft::inverse(pad[0]),
+            col_fwd: fft::forward(pad[1]),
+            col_inv: fft::inverse(pad[1]),
             rows: vec![Complex64::default(); pad[0] * pad[1]],
             cols: vec![Complex64::default(); pad[0] * pad[1]],
         };
