@@ -168,9 +168,24 @@ fn a_killed_sweep_resumes_without_solving_any_case_twice() {
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
-    // Kill it once a few cases are finished.
+    // A record being written when the kill came is left as a temporary
+    // (`stem.tmp-<pid>.json`), not a finished record: the rerun removes it.
+    let finished = |name: &String| !name.starts_with('.') && !is_temporary(name);
+    // Kill it once a few cases are finished (temporaries do not count: a record
+    // still being written when the kill came is not one).
     let deadline = Instant::now() + Duration::from_secs(120);
-    while record_files(&out).len() < 3 {
+    // Names only while the sweep runs: a temporary listed may be renamed before it
+    // could be read.
+    let names = |dir: &Path| -> Vec<String> {
+        fs::read_dir(dir.join("cases"))
+            .map(|d| {
+                d.flatten()
+                    .filter_map(|e| e.file_name().into_string().ok())
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    while names(&out).iter().filter(|name| finished(name)).count() < 3 {
         assert!(Instant::now() < deadline, "no case finished in 2 minutes");
         assert!(
             child.try_wait().unwrap().is_none(),
@@ -181,9 +196,6 @@ fn a_killed_sweep_resumes_without_solving_any_case_twice() {
     child.kill().unwrap();
     child.wait().unwrap();
     let before = record_files(&out);
-    // A record being written when the kill came is left as a temporary
-    // (`stem.tmp-<pid>.json`), not a finished record: the rerun removes it.
-    let finished = |name: &String| !name.starts_with('.') && !is_temporary(name);
     let k = before.keys().filter(|name| finished(name)).count();
     assert!(
         k >= 3 && k < n,
