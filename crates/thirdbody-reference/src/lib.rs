@@ -46,6 +46,19 @@ pub fn direct_convolution(
     field: &[f64],
     out: &mut [f64],
 ) -> Result<()> {
+    direct_convolution_rows(nx, ny, kernel, field, 0..ny, out)
+}
+
+/// [`direct_convolution`] on the output rows `rows` only (the others of `out` are
+/// left as they are): for grids whose full direct sum would take too long.
+pub fn direct_convolution_rows(
+    nx: usize,
+    ny: usize,
+    kernel: impl Fn(i64, i64) -> f64,
+    field: &[f64],
+    rows: impl IntoIterator<Item = usize>,
+    out: &mut [f64],
+) -> Result<()> {
     for (name, len) in [("field", field.len()), ("out", out.len())] {
         if len != nx * ny {
             return Err(Error::invalid(
@@ -55,7 +68,11 @@ pub fn direct_convolution(
             ));
         }
     }
-    for j in 0..ny {
+    let rows: Vec<usize> = rows.into_iter().collect();
+    if let Some(&j) = rows.iter().find(|&&j| j >= ny) {
+        return Err(Error::invalid("rows", j, &format!("rows below {ny}")));
+    }
+    for j in rows {
         for i in 0..nx {
             let mut s = 0.0;
             for l in 0..ny {
@@ -354,6 +371,8 @@ mod tests {
             direct_convolution(6, 5, kernel, &field, &mut out[1..]),
             "out"
         ));
+        let rows = direct_convolution_rows(6, 5, kernel, &field, [1, 5], &mut out);
+        assert!(names(rows, "rows"));
         assert!(out.iter().all(|&v| v == 0.0));
         // One value by hand: the corner cell (0, 0) sums K(-k, -l) f(k, l).
         direct_convolution(6, 5, kernel, &field, &mut out).unwrap();
