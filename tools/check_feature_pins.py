@@ -11,7 +11,7 @@ after adding or upgrading a dependency, run this and pin what it lists there.
 import subprocess
 import sys
 
-TESTS = ["--workspace", "--exclude", "thirdbody-py", "-e", "normal,build,dev"]
+TESTS = ["--workspace", "--exclude", "thirdbody-py", "--exclude", "thirdbody-bench", "-e", "normal,build,dev"]
 PYTHON = ["-p", "thirdbody-py", "-e", "normal,build"]
 
 

@@ -19,7 +19,7 @@ import subprocess
 import sys
 import time
 
-CARGO_ARGS = ["--release", "--workspace", "--exclude", "thirdbody-py"]
+CARGO_ARGS = ["--release", "--workspace", "--exclude", "thirdbody-py", "--exclude", "thirdbody-bench"]
 
 
 def test_binaries():

@@ -20,8 +20,7 @@
 
 pub mod fft;
 
-use faer::linalg::solvers::Solve;
-use faer::{Col, Mat};
+use nalgebra::{DMatrix, DVector};
 
 use thirdbody::case::Case;
 use thirdbody::convolution::Parallelism;
@@ -134,7 +133,7 @@ fn solve_dense_with(
         .body()
         .model()
         .surface_kernel(grid.cell(), nx, ny, problem.velocity())?;
-    let influence = Mat::<f64>::from_fn(n, n, |a, b| {
+    let influence = DMatrix::<f64>::from_fn(n, n, |a, b| {
         let di = (a % nx) as i64 - (b % nx) as i64;
         let dj = (a / nx) as i64 - (b / nx) as i64;
         kernel.at(di, dj)
@@ -259,11 +258,11 @@ impl DenseLayer<'_> {
     }
 
     /// `d w3_i / d p_j` for `i, j` in `idx`, as a dense `m x m` block.
-    fn jacobian(&self, p: &[f64], idx: &[usize]) -> Mat<f64> {
+    fn jacobian(&self, p: &[f64], idx: &[usize]) -> DMatrix<f64> {
         let lin = self.response.linearise(p);
         let n = p.len();
         let (mut unit, mut column) = (vec![0.0; n], vec![0.0; n]);
-        let mut jac = Mat::<f64>::zeros(idx.len(), idx.len());
+        let mut jac = DMatrix::<f64>::zeros(idx.len(), idx.len());
         for (c, &j) in idx.iter().enumerate() {
             unit[j] = 1.0;
             lin.apply(&unit, &mut column);
@@ -276,13 +275,19 @@ impl DenseLayer<'_> {
     }
 }
 
-fn apply_dense(a: &Mat<f64>, p: &[f64]) -> Vec<f64> {
+fn apply_dense(a: &DMatrix<f64>, p: &[f64]) -> Vec<f64> {
     (0..a.nrows())
         .map(|i| (0..a.ncols()).map(|j| a[(i, j)] * p[j]).sum())
         .collect()
 }
 
-fn gap_of(body: &Mat<f64>, layer: Option<&DenseLayer>, f: &[f64], p: &[f64], d: f64) -> Vec<f64> {
+fn gap_of(
+    body: &DMatrix<f64>,
+    layer: Option<&DenseLayer>,
+    f: &[f64],
+    p: &[f64],
+    d: f64,
+) -> Vec<f64> {
     let wb = apply_dense(body, p);
     let wl = layer.map(|l| l.displacement(p));
     (0..f.len())
@@ -293,7 +298,7 @@ fn gap_of(body: &Mat<f64>, layer: Option<&DenseLayer>, f: &[f64], p: &[f64], d: 
 /// Newton on `gap_A(p_A, D) = 0`, `sum(p_A) h^2 = Q` with `p = 0` off the set.
 #[allow(clippy::too_many_arguments)]
 fn newton_on_set(
-    body: &Mat<f64>,
+    body: &DMatrix<f64>,
     layer: Option<&DenseLayer>,
     f: &[f64],
     load: f64,
@@ -328,14 +333,18 @@ fn newton_on_set(
         }
         previous = worst;
         let layer_jac = layer.map(|l| l.jacobian(p, &idx));
-        let jac = Mat::<f64>::from_fn(m + 1, m + 1, |r, c| match (r < m, c < m) {
+        let jac = DMatrix::<f64>::from_fn(m + 1, m + 1, |r, c| match (r < m, c < m) {
             (true, true) => body[(idx[r], idx[c])] + layer_jac.as_ref().map_or(0.0, |j| j[(r, c)]),
             (true, false) => -1.0,
             (false, true) => area * weights[idx[c]],
             (false, false) => 0.0,
         });
-        let rhs = Col::<f64>::from_fn(m + 1, |r| if r < m { -gap[idx[r]] } else { -load_error });
-        let delta = jac.partial_piv_lu().solve(&rhs);
+        let rhs =
+            DVector::<f64>::from_fn(m + 1, |r, _| if r < m { -gap[idx[r]] } else { -load_error });
+        // A singular Jacobian (no solution) ends the iteration like a non-finite step.
+        let Some(delta) = jac.lu().solve(&rhs) else {
+            break;
+        };
         for (r, &k) in idx.iter().enumerate() {
             p[k] += delta[r];
         }

@@ -56,7 +56,7 @@
 //! widening `w` and the long-wave edge and adding alias nodes moves stacks of one to
 //! eight layers 1e-3 to 1e3 cells thick with E ratios 1e3 by 1.7e-12 at most.
 //! Cost: 1024 x 1024 cells in 0.39-0.63 s (medians) on two cores shared with other
-//! work (`benches/stack_kernel.rs`, `docs/performance.md`).
+//! work (`crates/thirdbody-bench/benches/stack_kernel.rs`, `docs/performance.md`).
 
 use std::f64::consts::PI;
 

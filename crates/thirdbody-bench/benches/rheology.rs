@@ -7,7 +7,7 @@ use std::hint::black_box;
 use std::time::Duration;
 use thirdbody::*;
 
-#[path = "../tests/bundled/mod.rs"]
+#[path = "../../thirdbody/tests/bundled/mod.rs"]
 mod bundled;
 
 fn fig3(n: usize) -> Case {

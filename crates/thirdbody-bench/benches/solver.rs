@@ -12,7 +12,7 @@ use std::time::Duration;
 use thirdbody::body::{SolidRheology, ViscoelasticHalfSpace};
 use thirdbody::*;
 
-#[path = "../tests/bundled/mod.rs"]
+#[path = "../../thirdbody/tests/bundled/mod.rs"]
 mod bundled;
 use bundled::bundled;
 
