@@ -622,16 +622,32 @@ pub fn solve_problem(
                     fallback = faces.map(|faces| (faces, p.clone()));
                 }
             }
+            // A bare body that stalls is tried once more from the same start with a
+            // softer contact-set rule (newton::SOFTER_ACTIVE_SET says when it helps).
+            let start = problem.layer.is_none().then(|| p.clone());
             let mut r = match newton::semismooth_newton(problem, &mut p, params, observer) {
                 Ok(r) => r,
                 Err(Error::Interrupted) => return Err(Error::Interrupted),
-                Err(e) => match fallback {
-                    Some((faces, warm)) => {
+                Err(e) => match (fallback, start) {
+                    (Some((faces, warm)), _) => {
                         problem.layer = Some(faces);
                         p = warm;
                         newton::semismooth_newton(problem, &mut p, params, observer)?
                     }
-                    None => return Err(e),
+                    (None, Some(start)) if matches!(e, Error::NoConvergence { .. }) => {
+                        let Error::NoConvergence { iterations, .. } = e else {
+                            unreachable!("matched above")
+                        };
+                        p = start;
+                        let softer = newton::SOFTER_ACTIVE_SET;
+                        let mut again = newton::semismooth_newton_scaled(
+                            problem, &mut p, params, observer, softer,
+                        )
+                        .map_err(|_| e)?;
+                        again.iterations += iterations;
+                        again
+                    }
+                    (None, _) => return Err(e),
                 },
             };
             // A layer whose response depends on where each contact's leading edge
