@@ -425,6 +425,49 @@ fn outside_the_model(case: &Case, e: Error) -> Error {
     }
 }
 
+/// A solve that did not converge on a window whose warm start (the previous window's
+/// or the scout's solution) already reached beyond [`MAX_CONTACT_FRACTION`] R from
+/// the initial contact point: the model's limit is the cause, not the iterations.
+/// The creep of a slow layer or body spreads a contact far beyond the load's own
+/// estimate, which [`outside_the_model`] checks (the paper's layer at V = 1e-6 under
+/// a sphere or a cylinder: 0.5 R and more). Other errors are returned as they are.
+fn beyond_the_model(case: &Case, warm: Option<&(Grid, Vec<f64>)>, e: Error) -> Error {
+    let Error::NoConvergence {
+        iterations,
+        residual,
+        ..
+    } = e
+    else {
+        return e;
+    };
+    let Some((grid, p)) = warm else {
+        return e;
+    };
+    let reach = (0..grid.len())
+        .filter(|&k| p[k] > 0.0)
+        .map(|k| {
+            let (i, j) = (k % grid.nx(), k / grid.nx());
+            let y = if grid.is_line() { 0.0 } else { grid.y(j) };
+            grid.x(i).abs().max(y.abs())
+        })
+        .fold(0.0f64, f64::max);
+    let r = case.slider.equivalent_radius();
+    if !(reach > MAX_CONTACT_FRACTION * r) {
+        return e;
+    }
+    Error::OutsideModel {
+        why: format!(
+            "its contact reached {:.3e} slider radii on a coarser or smaller window (the \
+             half-space and paraboloid model holds while it stays below \
+             {MAX_CONTACT_FRACTION} R), and the solver did not converge on the next \
+             (residual {residual:.3e} after {iterations} iterations); lower \
+             loading.normal_load or layer.compliance, raise the moduli, the slider's \
+             radius or loading.velocity",
+            reach / r
+        ),
+    }
+}
+
 /// [`solve_with`] in the solver's units: the windows of a case, from the first (its
 /// fixed one or the estimate's) to the one that holds the contact.
 fn solve_on_windows(
@@ -459,7 +502,8 @@ fn solve_on_windows(
                 half_width_y: wy,
             });
         }
-        let mut solution = solve_problem(&mut problem, warm.as_ref(), params, observer)?;
+        let mut solution = solve_problem(&mut problem, warm.as_ref(), params, observer)
+            .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
         solution.info.windows = attempt;
         let touches = grid.touches_edge(&solution.pressure);
         if fixed {

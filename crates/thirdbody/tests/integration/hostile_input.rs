@@ -280,3 +280,33 @@ fn a_load_far_outside_the_model_is_named_when_the_solve_fails_there() {
     let s = solve(&hertz, &SolverParams::default()).unwrap();
     assert!(!thirdbody::report::model_warnings(&hertz, &s).is_empty());
 }
+
+/// The paper's layer (C = 0.02, tau = 1) on a Zener body (E_g / E_0 = 100) under the
+/// sphere at V = 1e-6: the layer's creep spreads the contact to about 0.5 R, far
+/// beyond the load's own (Hertz) contact. The scout's coarse solve finds that (on
+/// 64² the case solves, with the model's warnings); 128² does not converge. The
+/// failure says the contact left the model, as an input error naming the keys,
+/// rather than blaming the iterations (it did, "did not converge", before).
+#[test]
+fn a_creeping_contact_far_outside_the_model_is_named_when_the_solve_fails_there() {
+    let text = "[slider]\nshape = \"sphere\"\nradius = 1.0\n\
+        [substrate]\nrheology = \"zener\"\nglassy_modulus = 100\nrelaxed_modulus = 1.0\n\
+        relaxation_time = 1.0\npoisson = 0.3\n\
+        [layer]\ncompliance = 0.02\nrelaxation_time = 1.0\n\
+        [loading]\nnormal_load = 5e-6\nvelocity = 1e-6\n\
+        [grid]\ncells = [128, 128]\n";
+    let case = thirdbody::case_file::parse_case_file(text, &mut |_, _| unreachable!())
+        .unwrap()
+        .case;
+    match solve(&case, &SolverParams::default()) {
+        Err(e @ Error::OutsideModel { .. }) => {
+            assert!(e.is_input(), "{e}");
+            let text = e.to_string();
+            assert!(
+                text.contains("slider radii") && text.contains("loading.velocity"),
+                "{text}"
+            );
+        }
+        other => panic!("{:?}", other.map(|s| s.summary())),
+    }
+}
