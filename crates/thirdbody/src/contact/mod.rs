@@ -452,7 +452,8 @@ fn beyond_the_model(case: &Case, warm: Option<&(Grid, Vec<f64>)>, e: Error) -> E
         })
         .fold(0.0f64, f64::max);
     let r = case.slider.equivalent_radius();
-    if !(reach > MAX_CONTACT_FRACTION * r) {
+    // (As the report measures it: from the origin, against the equivalent radius.)
+    if r.is_nan() || reach <= MAX_CONTACT_FRACTION * r {
         return e;
     }
     Error::OutsideModel {
