@@ -679,20 +679,26 @@ pub fn solve_problem(
                         p = warm;
                         newton::semismooth_newton(problem, &mut p, params, observer)?
                     }
-                    (None, Some(start)) if matches!(e, Error::NoConvergence { .. }) => {
+                    (None, Some(start)) => {
                         let Error::NoConvergence { iterations, .. } = e else {
-                            unreachable!("matched above")
+                            return Err(e);
                         };
                         p = start;
                         let softer = newton::SOFTER_ACTIVE_SET;
-                        let mut again = newton::semismooth_newton_scaled(
+                        match newton::semismooth_newton_scaled(
                             problem, &mut p, params, observer, softer,
-                        )
-                        .map_err(|_| e)?;
-                        again.iterations += iterations;
-                        again
+                        ) {
+                            Ok(mut again) => {
+                                again.iterations += iterations;
+                                again
+                            }
+                            Err(Error::Interrupted) => return Err(Error::Interrupted),
+                            // The first attempt's failure, whose history is the
+                            // one the default rule produced.
+                            Err(_) => return Err(e),
+                        }
                     }
-                    (None, _) => return Err(e),
+                    (None, None) => return Err(e),
                 },
             };
             // A layer whose response depends on where each contact's leading edge
