@@ -443,14 +443,13 @@ fn beyond_the_model(case: &Case, warm: Option<&(Grid, Vec<f64>)>, e: Error) -> E
     let Some((grid, p)) = warm else {
         return e;
     };
-    let reach = (0..grid.len())
-        .filter(|&k| p[k] > 0.0)
-        .map(|k| {
-            let (i, j) = (k % grid.nx(), k / grid.nx());
-            let y = if grid.is_line() { 0.0 } else { grid.y(j) };
-            grid.x(i).abs().max(y.abs())
-        })
-        .fold(0.0f64, f64::max);
+    let Some([i0, i1, j0, j1]) = window::loaded_box(grid, p) else {
+        return e;
+    };
+    let y = |j: usize| if grid.is_line() { 0.0 } else { grid.y(j) };
+    let reach = [grid.x(i0), grid.x(i1), y(j0), y(j1)]
+        .into_iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
     let r = case.slider.equivalent_radius();
     // (As the report measures it: from the origin, against the equivalent radius.)
     if r.is_nan() || reach <= MAX_CONTACT_FRACTION * r {

@@ -167,7 +167,7 @@ fn fit(geometry: Geometry, nx: usize, ny: usize, xs: [f64; 2], ys: [f64; 2]) -> 
 }
 
 /// Index ranges `[i_min, i_max] x [j_min, j_max]` of the loaded cells.
-fn loaded_box(grid: &Grid, p: &[f64]) -> Option<[usize; 4]> {
+pub(crate) fn loaded_box(grid: &Grid, p: &[f64]) -> Option<[usize; 4]> {
     let mut b = [usize::MAX, 0, usize::MAX, 0];
     let mut any = false;
     for j in 0..grid.ny {
