@@ -261,20 +261,7 @@ fn a_load_far_outside_the_model_is_named_when_the_solve_fails_there() {
     .unwrap()
     .replace("normal_load = 5e-6", "normal_load = 1e6");
     assert!(fig3.contains("normal_load = 1e6"));
-    let case = thirdbody::case_file::parse_case_file(&fig3, &mut |_, _| unreachable!())
-        .unwrap()
-        .case;
-    match solve(&case, &SolverParams::default()) {
-        Err(e @ Error::OutsideModel { .. }) => {
-            assert!(e.is_input(), "{e}");
-            let text = e.to_string();
-            assert!(
-                text.contains("loading.normal_load") && text.contains("slider radii"),
-                "{text}"
-            );
-        }
-        other => panic!("{:?}", other.map(|s| s.summary())),
-    }
+    assert_outside_the_model(&fig3, &["loading.normal_load", "slider radii"]);
     let mut hertz = hertz(32, None, None);
     hertz.loading.normal_load = 1e6;
     let s = solve(&hertz, &SolverParams::default()).unwrap();
@@ -295,17 +282,20 @@ fn a_creeping_contact_far_outside_the_model_is_named_when_the_solve_fails_there(
         [layer]\ncompliance = 0.02\nrelaxation_time = 1.0\n\
         [loading]\nnormal_load = 5e-6\nvelocity = 1e-6\n\
         [grid]\ncells = [128, 128]\n";
+    assert_outside_the_model(text, &["slider radii", "loading.velocity"]);
+}
+
+/// The case file `text` fails with "outside the model", an input error whose message
+/// holds every one of `words`.
+fn assert_outside_the_model(text: &str, words: &[&str]) {
     let case = thirdbody::case_file::parse_case_file(text, &mut |_, _| unreachable!())
         .unwrap()
         .case;
     match solve(&case, &SolverParams::default()) {
         Err(e @ Error::OutsideModel { .. }) => {
             assert!(e.is_input(), "{e}");
-            let text = e.to_string();
-            assert!(
-                text.contains("slider radii") && text.contains("loading.velocity"),
-                "{text}"
-            );
+            let message = e.to_string();
+            assert!(words.iter().all(|w| message.contains(w)), "{message}");
         }
         other => panic!("{:?}", other.map(|s| s.summary())),
     }
