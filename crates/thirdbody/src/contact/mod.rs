@@ -397,32 +397,18 @@ pub fn solve_with(
 /// error naming the keys, rather than blame the iterations. Other errors are
 /// returned as they are.
 fn outside_the_model(case: &Case, e: Error) -> Error {
-    let Error::NoConvergence {
-        iterations,
-        residual,
-        ..
-    } = e
-    else {
-        return e;
-    };
-    let r = case.slider.equivalent_radius();
-    let estimate = window::ContactEstimate::of(case);
     // The load's own contact (Hertz or Winkler), not the creep length, which a
     // folding layer can make long inside the model.
-    let extent = estimate.symmetric_radius;
-    if extent.is_nan() || extent <= MAX_CONTACT_FRACTION * r {
-        return e;
-    }
-    Error::OutsideModel {
-        why: format!(
-            "its contact is estimated to reach {:.3e} slider radii (the half-space and \
-             paraboloid model holds while it stays below {MAX_CONTACT_FRACTION} R), and the \
-             solver did not converge there (residual {residual:.3e} after {iterations} \
-             iterations); lower loading.normal_load or layer.compliance, or raise the \
-             moduli or the slider's radius",
-            extent / r
-        ),
-    }
+    let extent = window::ContactEstimate::of(case).symmetric_radius;
+    beyond_the_model_limit(
+        case,
+        extent,
+        "is estimated to reach",
+        "there",
+        "lower loading.normal_load or layer.compliance, or raise the moduli or the \
+         slider's radius",
+        e,
+    )
 }
 
 /// A solve that did not converge on a window whose warm start (the previous window's
@@ -432,6 +418,39 @@ fn outside_the_model(case: &Case, e: Error) -> Error {
 /// estimate, which [`outside_the_model`] checks (the paper's layer at V = 1e-6 under
 /// a sphere or a cylinder: 0.5 R and more). Other errors are returned as they are.
 fn beyond_the_model(case: &Case, warm: Option<&(Grid, Vec<f64>)>, e: Error) -> Error {
+    let Some((grid, p)) = warm else {
+        return e;
+    };
+    let Some([i0, i1, j0, j1]) = window::loaded_box(grid, p) else {
+        return e;
+    };
+    let y = |j: usize| if grid.is_line() { 0.0 } else { grid.y(j) };
+    // As the report measures it: from the origin, against the equivalent radius.
+    let reach = [grid.x(i0), grid.x(i1), y(j0), y(j1)]
+        .into_iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    beyond_the_model_limit(
+        case,
+        reach,
+        "reached",
+        "on the next window, after a coarser or smaller one",
+        "lower loading.normal_load or layer.compliance, raise the moduli, the slider's \
+         radius or loading.velocity",
+        e,
+    )
+}
+
+/// The "outside the model" error of a solve that did not converge (`e`) while its
+/// contact `extent` (from the initial contact point) exceeds [`MAX_CONTACT_FRACTION`]
+/// of the slider's radius; `e` itself otherwise (a NaN extent or radius included).
+fn beyond_the_model_limit(
+    case: &Case,
+    extent: f64,
+    measured: &str,
+    whence: &str,
+    remedy: &str,
+    e: Error,
+) -> Error {
     let Error::NoConvergence {
         iterations,
         residual,
@@ -440,30 +459,17 @@ fn beyond_the_model(case: &Case, warm: Option<&(Grid, Vec<f64>)>, e: Error) -> E
     else {
         return e;
     };
-    let Some((grid, p)) = warm else {
-        return e;
-    };
-    let Some([i0, i1, j0, j1]) = window::loaded_box(grid, p) else {
-        return e;
-    };
-    let y = |j: usize| if grid.is_line() { 0.0 } else { grid.y(j) };
-    let reach = [grid.x(i0), grid.x(i1), y(j0), y(j1)]
-        .into_iter()
-        .fold(0.0f64, |m, v| m.max(v.abs()));
     let r = case.slider.equivalent_radius();
-    // (As the report measures it: from the origin, against the equivalent radius.)
-    if r.is_nan() || reach <= MAX_CONTACT_FRACTION * r {
+    if extent.is_nan() || r.is_nan() || extent <= MAX_CONTACT_FRACTION * r {
         return e;
     }
     Error::OutsideModel {
         why: format!(
-            "its contact reached {:.3e} slider radii on a coarser or smaller window (the \
-             half-space and paraboloid model holds while it stays below \
-             {MAX_CONTACT_FRACTION} R), and the solver did not converge on the next \
-             (residual {residual:.3e} after {iterations} iterations); lower \
-             loading.normal_load or layer.compliance, raise the moduli, the slider's \
-             radius or loading.velocity",
-            reach / r
+            "its contact {measured} {:.3e} slider radii (the half-space and paraboloid \
+             model holds while it stays below {MAX_CONTACT_FRACTION} R), and the solver did \
+             not converge {whence} (residual {residual:.3e} after {iterations} \
+             iterations); {remedy}",
+            extent / r
         ),
     }
 }
