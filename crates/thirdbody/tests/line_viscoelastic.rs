@@ -136,49 +136,46 @@ fn a_zener_line_contact_converges_at_every_speed() {
     assert!(mu[peak..].windows(2).all(|w| w[1] < w[0]), "{mu:?}");
 }
 
-/// A Zener body whose glassy modulus is a thousand times its relaxed one, at
-/// V tau = a0 / 100 (cylinder R = 1 on E_0 = 1, nu = 0.3, under 1e-3 per length).
-/// Behind the leading edge it is glassy over V tau, a fraction of a cell at 4,096
-/// cells, and Newton cycles there between contact sets that differ at that edge,
-/// near a residual of 7e-5, after starting at 5e-8 from the coarser window's
-/// solution. The solve returns its best iterate and says so in a warning; that
-/// iterate is a solution: its friction equals the power dissipated in the body to
-/// 1e-4, and it agrees with the fully converged 1,024-cell solve.
+/// Zener bodies whose glassy modulus is a thousand and ten thousand times the
+/// relaxed one (cylinder R = 1 on E_0 = 1, nu = 0.3, under 1e-3 per length), at
+/// V tau = a0 / 100 and a0 / 10,000. Behind the leading edge the body is glassy over
+/// a fraction of a cell, and the collocated creep integral left the odd–even mode
+/// there almost free: the first ended its solve cycling between contact sets near a
+/// residual of 7e-5 (returned as its best iterate, with a warning), and the second
+/// did not converge on 256, 1,024 or 4,096 cells. With the kernel's leading-edge
+/// damping and Newton's deeper backtracking both converge to the tolerance on every
+/// grid; independent checks: the friction equals the power dissipated in the body,
+/// and the grids agree.
 #[test]
-fn a_solve_that_stalls_near_the_tolerance_returns_its_best_iterate_with_a_warning() {
-    let case = |cells: usize| {
-        let mut case = hunter_case(1000.0, 0.01, cells);
+fn a_glassy_leading_edge_converges_on_every_grid() {
+    let case = |ratio: f64, speed: f64, cells: usize| {
+        let mut case = hunter_case(ratio, speed, cells);
         let relaxed_star = 1.0 / (1.0 - POISSON * POISSON);
         let a0 = (4.0 * 1e-3 * RADIUS / (std::f64::consts::PI * relaxed_star)).sqrt();
         case.loading.normal_load = 1e-3;
-        case.loading.velocity = Some(0.01 * a0);
+        case.loading.velocity = Some(speed * a0);
         case
     };
-    let fine_case = case(4096);
-    let fine = solve(&fine_case, &SolverParams::default()).unwrap();
-    let info = &fine.info;
-    assert!(
-        info.residual > info.tolerance && info.residual <= contact::STALLED_BUT_SOLVED,
-        "the case no longer stalls (residual {:e}): choose another for this test",
-        info.residual
-    );
-    let warnings = report::model_warnings(&fine_case, &fine);
-    assert!(
-        warnings.iter().any(|w| w.contains("stopped at a residual")),
-        "{warnings:?}"
-    );
-    let s = fine.summary();
-    let balance = s.friction_coefficient / s.dissipation_friction_coefficient - 1.0;
-    let coarse = solve(&case(1024), &SolverParams::default()).unwrap();
-    assert!(coarse.info.residual <= coarse.info.tolerance);
-    let c = coarse.summary();
-    let mu = s.friction_coefficient / c.friction_coefficient - 1.0;
-    let approach = s.penetration / c.penetration - 1.0;
-    eprintln!(
-        "residual {:.1e}; energy balance {balance:.1e}; against 1,024 cells: mu {mu:.1e}, \
-         approach {approach:.1e}, p_max {:.1e}",
-        info.residual,
-        s.max_pressure / c.max_pressure - 1.0
-    );
-    assert!(balance.abs() < 1e-4 && mu.abs() < 1e-3 && approach.abs() < 1e-4);
+    for (ratio, speed) in [(1000.0, 0.01), (1e4, 1e-4)] {
+        let mut mu = Vec::new();
+        for cells in [256, 1024, 4096] {
+            let solution = solve(&case(ratio, speed, cells), &SolverParams::default())
+                .unwrap_or_else(|e| panic!("E_g/E_0 {ratio}, {cells} cells: {e}"));
+            assert!(solution.info.residual <= solution.info.tolerance);
+            let s = solution.summary();
+            let balance = s.friction_coefficient / s.dissipation_friction_coefficient - 1.0;
+            eprintln!(
+                "E_g/E_0 {ratio}, V tau / a0 {speed}, {cells} cells: mu {:.7e}, energy \
+                 balance {balance:.1e}",
+                s.friction_coefficient
+            );
+            // Measured: 1.8e-5, 1.1e-6, 1.9e-8 (E_g/E_0 = 1000) and -1.8e-3, 2.4e-4,
+            // 4.1e-5 (1e4) on 256, 1,024 and 4,096 cells.
+            assert!(balance.abs() < 2.5e-3, "{ratio} {cells}: {balance}");
+            mu.push(s.friction_coefficient);
+        }
+        // Measured: 1.1e-7 (E_g/E_0 = 1000) and 9.5e-6 (1e4).
+        let spread = (mu[2] / mu[1] - 1.0).abs().max((mu[2] / mu[0] - 1.0).abs());
+        assert!(spread < 1e-4, "E_g/E_0 {ratio}: {mu:?}");
+    }
 }

@@ -189,16 +189,24 @@ const REFERENCE: [(f64, f64, f64, f64); 7] = [
 #[test]
 fn the_contact_matches_an_independent_boundary_element_solution() {
     // The same cells (128^2 over +-1.6 a0, plane-strain relaxed modulus 1 with
-    // nu = 0), so both solve the same discrete problem; they differ in the kernel's
-    // quadrature (the reference interpolates it linearly on eighths of a cell) and
-    // in the solver.
+    // nu = 0), so both solve nearly the same discrete problem; they differ in the
+    // kernel's quadrature (the reference interpolates it linearly on eighths of a
+    // cell), in the solver, and in the solvers' leading-edge damping, which the
+    // reference does not add (`body::viscoelastic`; here its weight is at most 1e-4
+    // of the relaxed compliance).
     for (ratio, zeta, mu_ref, d_ref) in REFERENCE {
         let case = sliding(zener(ratio, 1.0, 1.0, 0.0), zeta * A0, 128, Some(1.6));
         let s = solve(&case, &P).unwrap().summary();
         let (mu, d) = (s.friction_coefficient / A0, s.penetration / (A0 * A0));
-        // Measured: mu within 1.4e-5 but at E_g / E_0 = 10, V tau / a0 = 10 (4.4e-4,
-        // where the creep length is 100 a0, beyond the reference's near field: its
-        // own N = 96 and N = 128 tables differ by 3e-3 there); D within 1.2e-5.
+        eprintln!(
+            "E_g/E_0 {ratio}, V tau / a0 {zeta}: mu {:.1e}, D {:.1e}",
+            rel(mu, mu_ref),
+            rel(d, d_ref)
+        );
+        // Measured: mu within 2.1e-5 (1.4e-5 without the damping) but at E_g / E_0 =
+        // 10, V tau / a0 = 10 (4.4e-4, where the creep length is 100 a0, beyond the
+        // reference's near field: its own N = 96 and N = 128 tables differ by 3e-3
+        // there); D within 1.1e-5.
         assert!(
             rel(mu, mu_ref) < 6e-4,
             "k {ratio} zeta {zeta}: mu {mu} vs {mu_ref}"
@@ -327,8 +335,14 @@ fn friction_equals_the_power_dissipated_in_the_body() {
                 s.friction_coefficient,
             ));
         }
-        // Measured (64^2, 128^2): V tau / a0 = 1e-3: 0.47 %, 0.13 %; 1e-2: 0.57 %,
-        // 0.23 %; 0.1: 0.25 %, 0.055 %; 1: 0.045 %, 0.014 %; 10: 0.027 %, 0.029 %.
+        eprintln!(
+            "V tau / a0 {zeta}: energy imbalance {:.2e} {:.2e}",
+            imbalance[0], imbalance[1]
+        );
+        // Measured (64^2, 128^2): V tau / a0 = 1e-3: 0.97 %, 0.13 %; 1e-2: 0.39 %,
+        // 0.16 %; 0.1: 0.28 %, 0.059 %; 1: 0.081 %, 0.014 %; 10: 0.16 %, 0.012 %
+        // (with the exact kernel, before the leading-edge damping: 0.97 %, 0.23 %;
+        // 0.59 %, 0.22 %; 0.29 %, 0.061 %; 0.081 %, 0.014 %; 0.16 %, 0.012 %).
         assert!(imbalance[1] < 5e-3, "zeta {zeta}: {imbalance:?}");
         // Shrinking with the grid where the grid's error dominates; below 1e-3 the
         // dissipation's own quadrature (1e-4) and the windows' placement decide.
@@ -340,32 +354,40 @@ fn friction_equals_the_power_dissipated_in_the_body() {
 }
 
 #[test]
-fn a_glassy_leading_edge_converges_on_a_fine_grid() {
+fn a_rubbers_glassy_ratio_converges_across_the_friction_maximum() {
     // A rubber's ratio of glassy to relaxed modulus, E_g / E_0 = 1000 (nu = 0), at
-    // V tau / a0 = 3e-3: the body responds glassily over 3e-3 a0 behind the leading
-    // edge, a tenth of a cell on 192^2, and its own-cell compliance is about 1/700 of
-    // the relaxed one. There the first Newton attempt stalls near a residual of 3e-3
-    // (its contact sets swing at the leading edge); the second, from the same start
-    // with a softer contact-set rule, converges. Independent checks: the energy
-    // balance, and the friction and approach of the 128^2 grid (which converges at
-    // the first attempt).
+    // V tau / a0 = 3e-4, 1e-3 and 3e-3, around the friction's maximum: the body is
+    // glassy over a few 1e-3 a0 behind the leading edge, a fraction of a cell, and
+    // the creep part's collocation left the odd–even mode along x almost free
+    // there. Before the kernel's leading-edge damping and Newton's tighter linear
+    // solves, 3e-4 and 1e-3 failed on every grid from 64^2 to 256^2 and 3e-3 needed
+    // a second attempt on 192^2. Independent checks: the energy balance, and the
+    // friction and approach of the coarser grid.
     let body = zener(1000.0, 1.0, 1.0, 0.0);
-    let velocity = 3e-3 * A0;
-    let coarse = solve(&sliding(body.clone(), velocity, 128, None), &P)
-        .unwrap()
-        .summary();
-    let fine = solve(&sliding(body, velocity, 192, None), &P)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .summary();
-    assert!(fine.residual <= P.tolerance, "{}", fine.residual);
-    let balance = rel(
-        fine.dissipation_friction_coefficient,
-        fine.friction_coefficient,
-    );
-    let grids = rel(fine.friction_coefficient, coarse.friction_coefficient);
-    let approach = rel(fine.penetration, coarse.penetration);
-    eprintln!("balance {balance:.2e}, mu 192 vs 128 {grids:.2e}, D {approach:.2e}");
-    assert!(balance < 5e-3, "{balance}");
-    assert!(grids < 1e-3, "{grids}");
-    assert!(approach < 1e-3, "{approach}");
+    for (zeta, grids) in [(3e-4, [96, 128]), (1e-3, [128, 192]), (3e-3, [128, 192])] {
+        let velocity = zeta * A0;
+        let [coarse, fine] = grids.map(|cells| {
+            let s = solve(&sliding(body.clone(), velocity, cells, None), &P)
+                .unwrap_or_else(|e| panic!("zeta {zeta}, {cells}^2: {e}"))
+                .summary();
+            assert!(s.residual <= P.tolerance, "{}", s.residual);
+            s
+        });
+        let balance = rel(
+            fine.dissipation_friction_coefficient,
+            fine.friction_coefficient,
+        );
+        let mu = rel(fine.friction_coefficient, coarse.friction_coefficient);
+        let approach = rel(fine.penetration, coarse.penetration);
+        eprintln!(
+            "zeta {zeta}: mu {:.6e}, balance {balance:.2e}, mu against the coarser grid \
+             {mu:.2e}, D {approach:.2e}",
+            fine.friction_coefficient
+        );
+        // Measured: balance 2.2e-3, 1.5e-3, 2.0e-3; mu against the coarser grid
+        // 3.0e-4, 7.8e-5, 4.8e-5; D 2.5e-5, 1.9e-5, 1.9e-5.
+        assert!(balance < 5e-3, "zeta {zeta}: {balance}");
+        assert!(mu < 1e-3, "zeta {zeta}: {mu}");
+        assert!(approach < 1e-3, "zeta {zeta}: {approach}");
+    }
 }

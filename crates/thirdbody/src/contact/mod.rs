@@ -269,6 +269,24 @@ impl<'a> Monitor<'a> {
         })
     }
 
+    /// The error of an iteration that can no longer move: its damped steps, however
+    /// short, no longer lower its merit, so the next step would be the same.
+    pub(crate) fn stuck(&mut self, iteration: usize, residual: f64, steps: usize) -> Error {
+        Error::NoConvergence {
+            iterations: iteration,
+            residual,
+            tolerance: self.tolerance,
+            history: std::mem::take(&mut self.history),
+            hint: format!(
+                "the iteration is stuck: the last {steps} steps, shortened to a millionth, \
+                 did not lower its merit, so more iterations would not help: the discrete \
+                 problem is too ill-conditioned at these parameters (e.g. moduli or \
+                 compliances many orders of magnitude apart); check the case's scales or \
+                 try another cell count"
+            ),
+        }
+    }
+
     /// Whether the residual has stopped falling: its best over the last
     /// `stagnation_window` iterations is not below [`STAGNATION_FACTOR`] times its
     /// best before them. A converging CG or Newton iteration gains far more than
