@@ -841,6 +841,15 @@ fn love_far_scaled(gl: &GaussLegendre, x: f64, y: f64) -> f64 {
     0.25 * sum / PI
 }
 
+/// `x ln x`, continued by its limit 0 at `x = 0`.
+fn x_ln_x(x: f64) -> f64 {
+    if x > 0.0 {
+        x * x.ln()
+    } else {
+        0.0
+    }
+}
+
 /// Points and weights of `(1 / lambda) int_0^len exp(-t / lambda) g(t) dt` for `g`
 /// smooth, or with a `t ln t` type singularity at 0 or at `len` if flagged.
 fn exp_weighted_rule(
@@ -945,13 +954,16 @@ impl BranchWeights {
         let unit = product(1.0);
         let half = product(0.5);
         let unit_reversed = unit.iter().rev().copied().collect();
+        // The graded pieces at the end reach widths of 1e-14, where a node can round
+        // onto the end itself (0 ln 0, a NaN, for creep lengths near 0.011 and 0.019
+        // cells): the integrand's limit there is 0.
         let singular_start = exp_weighted_rule(&gl, lambda, 0.5, true, false)
             .iter()
-            .map(|(t, w)| w * t * t.ln())
+            .map(|(t, w)| w * x_ln_x(*t))
             .sum();
         let singular_end = exp_weighted_rule(&gl, lambda, 0.5, false, true)
             .iter()
-            .map(|(t, w)| w * (t - 0.5) * (0.5 - t).ln())
+            .map(|(t, w)| w * -x_ln_x(0.5 - t))
             .sum();
         BranchWeights {
             compliance,
@@ -1605,6 +1617,42 @@ mod tests {
         assert_eq!(leading_edge_damping(&body.creep, cell, f64::INFINITY), 0.0);
         let stiff = series(1e3, &[(compliance, lambda)]);
         assert!(leading_edge_damping(&stiff, cell, 1.0) < 1e-3 * w);
+    }
+
+    #[test]
+    fn every_creep_length_gives_a_finite_kernel() {
+        // Creep lengths near 0.011 and 0.019 cells once put a node of the edge
+        // singularity's graded rule onto the panel's end (0 ln 0) and made the loaded
+        // row downstream of the load NaN: a fractional Zener body, whose branches
+        // spread over 40 decades of times, met one at most speeds. Every length from
+        // 1e-3 to 1e3 cells on a fine logarithmic grid (those among them), point and
+        // line kernels, and the values near the old failures against brute force.
+        for k in 0..=1200 {
+            let lambda = 10f64.powf(-3.0 + 6.0 * k as f64 / 1200.0);
+            let s = series(0.1, &[(1.0, lambda)]);
+            let point = steady_sliding_kernel(&s, 1.0, 6, 2, 1.0).unwrap();
+            let line = steady_sliding_line_kernel(&s, 1.0, 6, 1.0, 100.0).unwrap();
+            assert!(
+                point.iter().chain(&line).all(|v| v.is_finite()),
+                "creep length {lambda} cells"
+            );
+        }
+        for lambda in [
+            0.010964781961431828,
+            0.0181970085860999,
+            0.019054607179632522,
+        ] {
+            let s = series(0.0, &[(1.0, lambda)]);
+            let point = steady_sliding_kernel(&s, 1.0, 4, 1, 1.0).unwrap();
+            for di in -3..=3i64 {
+                let value = point[(di + 3) as usize];
+                let reference = brute_force(di as f64, 0.0, lambda);
+                assert!(
+                    (value - reference).abs() < 1e-12 * reference.abs().max(1.0),
+                    "creep length {lambda}, offset {di}: {value} against {reference}"
+                );
+            }
+        }
     }
 
     #[test]
