@@ -60,7 +60,12 @@ const FORCING: f64 = 1e-2;
 /// descent directions: a Zener body at E_g/E_0 = 1000, V tau / a0 = 1e-3 to 3e-3, on
 /// 192^2 and 256^2 cells stalled near a residual of 0.08 in both attempts; with 1e-4
 /// it converges in 12 to 17 steps, and Newton takes 2 to 7 times fewer steps on
-/// the cases that converged before (the same friction to 8 digits).
+/// the cases that converged before (the same friction to 8 digits). Measured
+/// alternatives: 1e-3, or 1e-2 tightened to 1e-4 after the first step that does not
+/// lower the merit, leave those cases to the second attempt (12 to 47 s instead of
+/// 1 s); 1e-2 in line contacts (45 % faster on the Zener line bench) leaves 4 of 25
+/// glassy line probes stalled short of the tolerance. It costs time on easy cases:
+/// the Zener bench solves go from 175 to 194 ms (256^2) and from 46 to 67 ms (line).
 const BARE_BODY_FORCING: f64 = 1e-4;
 /// Consecutive steps of a bare body, each shortened to [`BARE_BODY_MIN_STEP`]
 /// without lowering the merit, after which the iteration stops (and a first attempt
