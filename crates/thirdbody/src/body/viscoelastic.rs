@@ -479,15 +479,13 @@ impl BodyModel for ViscoelasticBody {
     }
 }
 
-/// The weight `sum_k w_k` (compliance units) of the upwind correction
-/// `w (W(x) - W(x + h))` that the solvers' kernels add to the exact ones (module
-/// documentation, "The solvers' kernel: leading-edge damping"), for cells of side
-/// `cell` at the sliding speed `velocity`: 0 when no branch creeps. Branches whose
-/// creep length lies below the relaxed limit count in the cell's own response as
-/// glassy compliance does.
-pub fn leading_edge_damping(series: &CreepSeries, cell: f64, velocity: f64) -> f64 {
+/// The branches at `velocity` on cells of side `cell`: the compliance that acts at
+/// once (the glassy one plus the branches relaxed within 1e-100 cells) and the
+/// `(J_k, lambda_k)` of those creeping over `lambda_k` cells. Frozen branches, and
+/// those creeping beyond 1e100 cells, take no part.
+fn split_branches(series: &CreepSeries, cell: f64, velocity: f64) -> (f64, Vec<(f64, f64)>) {
     let mut instantaneous = series.glassy;
-    let (mut own, mut weight) = (0.0, 0.0);
+    let mut creeping = Vec::new();
     for b in &series.branches {
         if !b.retardation_time.is_finite() || b.compliance == 0.0 {
             continue;
@@ -496,12 +494,27 @@ pub fn leading_edge_damping(series: &CreepSeries, cell: f64, velocity: f64) -> f
         if lambda < LAMBDA_FLOOR {
             instantaneous += b.compliance;
         } else if lambda <= 1.0 / LAMBDA_FLOOR {
-            let x = 1.0 / lambda;
-            // 1 - b and b - a = b (1 - b) without cancellation for long lengths.
-            let rise = -(-0.5 * x).exp_m1();
-            own += rise * b.compliance;
-            weight += (1.0 - rise) * rise * (-2.0 * x).exp() * b.compliance;
+            creeping.push((b.compliance, lambda));
         }
+    }
+    (instantaneous, creeping)
+}
+
+/// The weight `sum_k w_k` (compliance units) of the upwind correction
+/// `w (W(x) - W(x + h))` that the solvers' kernels add to the exact ones (module
+/// documentation, "The solvers' kernel: leading-edge damping"), for cells of side
+/// `cell` at the sliding speed `velocity`: 0 when no branch creeps. Branches whose
+/// creep length lies below the relaxed limit count in the cell's own response as
+/// glassy compliance does.
+pub fn leading_edge_damping(series: &CreepSeries, cell: f64, velocity: f64) -> f64 {
+    let (instantaneous, creeping) = split_branches(series, cell, velocity);
+    let (mut own, mut weight) = (0.0, 0.0);
+    for (compliance, lambda) in creeping {
+        let x = 1.0 / lambda;
+        // 1 - b and b - a = b (1 - b) without cancellation for long lengths.
+        let rise = -(-0.5 * x).exp_m1();
+        own += rise * compliance;
+        weight += (1.0 - rise) * rise * (-2.0 * x).exp() * compliance;
     }
     if weight == 0.0 {
         return 0.0;
@@ -538,20 +551,7 @@ pub fn steady_sliding_kernel(
             allowed: "at least one cell in each direction".into(),
         });
     }
-    // Split the branches: relaxed, frozen, or creeping over lambda cells.
-    let mut elastic = series.glassy;
-    let mut creeping: Vec<(f64, f64)> = Vec::new();
-    for b in &series.branches {
-        if !b.retardation_time.is_finite() || b.compliance == 0.0 {
-            continue;
-        }
-        let lambda = velocity * b.retardation_time / cell;
-        if lambda < LAMBDA_FLOOR {
-            elastic += b.compliance;
-        } else if lambda <= 1.0 / LAMBDA_FLOOR {
-            creeping.push((b.compliance, lambda));
-        }
-    }
+    let (elastic, creeping) = split_branches(series, cell, velocity);
     if elastic == 0.0 && creeping.is_empty() {
         return Err(invalid(
             "velocity",
