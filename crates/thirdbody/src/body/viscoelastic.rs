@@ -619,26 +619,16 @@ pub fn steady_sliding_line_kernel(
         return Err(invalid("reference", reference, "a finite length > 0"));
     }
     // Relaxed, creeping over lambda cells, or beyond 1e100 cells (a constant).
-    let mut elastic = series.glassy;
-    let mut creeping: Vec<(f64, f64)> = Vec::new();
-    let mut level = 0.0;
-    let mut total = series.glassy;
+    let (elastic, creeping) = split_branches(series, cell, velocity);
+    let (mut level, mut beyond) = (0.0, 0.0);
     for b in &series.branches {
-        if !b.retardation_time.is_finite() || b.compliance == 0.0 {
-            continue;
-        }
         let lambda = velocity * b.retardation_time / cell;
-        if lambda < LAMBDA_FLOOR {
-            elastic += b.compliance;
-        } else if lambda <= 1.0 / LAMBDA_FLOOR {
-            creeping.push((b.compliance, lambda));
-        } else if lambda.is_finite() {
+        if b.compliance > 0.0 && lambda.is_finite() && lambda > 1.0 / LAMBDA_FLOOR {
             level += b.compliance * (lambda.ln() - EULER_GAMMA);
-        } else {
-            continue;
+            beyond += b.compliance;
         }
-        total += b.compliance;
     }
+    let total = elastic + creeping.iter().map(|&(j, _)| j).sum::<f64>() + beyond;
     if elastic == 0.0 && creeping.is_empty() {
         return Err(invalid(
             "velocity",
