@@ -100,11 +100,11 @@
 //! integral along x, nearly of the first kind) leaves the odd–even mode along x
 //! almost free: its symbol at the shortest wave is about `J_g` against the
 //! `sum_k J_k / (2 lambda_k)` a cell answers with, so a pressure jump at a glassy
-//! leading edge rings across the contact, the pressures alternate in sign, and at
-//! E_g/E_0 = 1000 the discrete contact problem has no solution with a positive
-//! pressure (the contact set that fits the contact best leaves 26 % of the peak
-//! negative on a 1,024-cell line). The layer has the same mode and the same cure
-//! ([`crate::layer`]'s viscoelastic rows). [`BodyModel::surface_kernel`] and
+//! leading edge rings across the contact and the pressures alternate in sign: at
+//! E_g/E_0 = 1e4 no contact interval near the contact gives a positive pressure on
+//! a 1,024-cell line (the best of them leaves 26 % of the peak negative), and at
+//! E_g/E_0 = 1000 the 3-D solves failed. The layer has the same mode and the same
+//! cure ([`crate::layer`]'s viscoelastic rows). [`BodyModel::surface_kernel`] and
 //! [`BodyModel::line_kernel`] therefore add to each creeping branch the upwind
 //! correction `w_k (W(x) - W(x + h))` of the displacement, `W` the elastic response
 //! per unit compliance (Love's cell kernel, or the strip's), `x + h` the upstream
