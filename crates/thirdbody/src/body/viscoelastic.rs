@@ -329,27 +329,8 @@ impl BodyModel for ViscoelasticBody {
         ny: usize,
         velocity: f64,
     ) -> Result<SurfaceKernel> {
-        let mut half = steady_sliding_kernel(&self.creep, cell, nx, ny, velocity)?;
+        let half = sliding_kernel(&self.creep, cell, nx, ny, velocity, true)?;
         if self.creeps_at(velocity, cell) {
-            let damping = leading_edge_damping(&self.creep, cell, velocity);
-            if damping > 0.0 {
-                // w (W(x) - W(x + h)) with W Love's response per unit compliance.
-                let unit = Elastic {
-                    young: 1.0,
-                    poisson: 0.0,
-                };
-                let love = homogeneous_surface_kernel_quadrant(unit, cell, nx + 1, ny);
-                let width = 2 * nx - 1;
-                for (dj, row) in half.chunks_exact_mut(width).enumerate() {
-                    let love_row = &love[dj * (nx + 1)..(dj + 1) * (nx + 1)];
-                    for (k, value) in row.iter_mut().enumerate() {
-                        let di = k as i64 - (nx as i64 - 1);
-                        let here = love_row[di.unsigned_abs() as usize];
-                        let upstream = love_row[(di + 1).unsigned_abs() as usize];
-                        *value += damping * (here - upstream);
-                    }
-                }
-            }
             return Ok(SurfaceKernel::EvenInY { half, nx });
         }
         // No branch creeps at this speed: the kernel is the elastic one of the
@@ -537,6 +518,20 @@ pub fn steady_sliding_kernel(
     ny: usize,
     velocity: f64,
 ) -> Result<Vec<f64>> {
+    sliding_kernel(series, cell, nx, ny, velocity, false)
+}
+
+/// [`steady_sliding_kernel`], with the solvers' leading-edge damping added if
+/// `damped` (module documentation, "The solvers' kernel"), both from one table of
+/// Love's kernel.
+fn sliding_kernel(
+    series: &CreepSeries,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    velocity: f64,
+    damped: bool,
+) -> Result<Vec<f64>> {
     series.validate()?;
     if !(cell.is_finite() && cell > 0.0) {
         return Err(invalid("cell", cell, "a finite length > 0"));
@@ -564,12 +559,15 @@ pub fn steady_sliding_kernel(
         young: 1.0,
         poisson: 0.0,
     };
-    let quadrant = homogeneous_surface_kernel_quadrant(unit, cell, nx, ny);
+    // Love's kernel one offset wider than the window: the damping reads the
+    // upstream neighbour of the last offset.
+    let wide = nx + 1;
+    let love = homogeneous_surface_kernel_quadrant(unit, cell, wide, ny);
     let mut out = vec![0.0; width * ny];
     for dj in 0..ny {
         for di in 0..width {
             let i = di.abs_diff(nx - 1);
-            out[dj * width + di] = elastic * quadrant[dj * nx + i];
+            out[dj * width + di] = elastic * love[dj * wide + i];
         }
     }
     if creeping.is_empty() {
@@ -579,6 +577,23 @@ pub fn steady_sliding_kernel(
     for (dj, row) in rows.iter().enumerate() {
         for (o, r) in out[dj * width..(dj + 1) * width].iter_mut().zip(row) {
             *o += cell * r;
+        }
+    }
+    let damping = if damped {
+        leading_edge_damping(series, cell, velocity)
+    } else {
+        0.0
+    };
+    if damping > 0.0 {
+        // w (W(x) - W(x + h)) with W Love's response per unit compliance.
+        for (dj, row) in out.chunks_exact_mut(width).enumerate() {
+            let love_row = &love[dj * wide..(dj + 1) * wide];
+            for (k, value) in row.iter_mut().enumerate() {
+                let di = k as i64 - (nx as i64 - 1);
+                let here = love_row[di.unsigned_abs() as usize];
+                let upstream = love_row[(di + 1).unsigned_abs() as usize];
+                *value += damping * (here - upstream);
+            }
         }
     }
     Ok(out)
