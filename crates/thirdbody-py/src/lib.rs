@@ -728,7 +728,9 @@ fn solve_in(
     };
     // The fields move into numpy without a copy; the pressure stays for stresses.
     let arrays = Fields {
-        pressure: read_only(py, solution.pressure.clone(), shape.clone())?,
+        // Each cell's mean pressure (the centre value but where a contact's edge
+        // cuts the cell), as the command line writes it.
+        pressure: read_only(py, solution.mean_pressure().into_owned(), shape.clone())?,
         gap: read_only(py, std::mem::take(&mut solution.gap), shape.clone())?,
         body_displacement: read_only(
             py,

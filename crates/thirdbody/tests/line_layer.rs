@@ -45,12 +45,18 @@ struct RowReference {
 
 /// The row whose load per unit length is `LOAD`.
 fn row_reference(law: &Law) -> RowReference {
+    row_reference_at(law, VELOCITY, LOAD)
+}
+
+/// The row of creep length `creep_length` (T = 1) whose load per unit length is
+/// `load`.
+fn row_reference_at(law: &Law, creep_length: f64, load: f64) -> RowReference {
     let base = RigidBase {
         radius: RADIUS,
-        creep_length: VELOCITY,
-        load: LOAD,
+        creep_length,
+        load,
     };
-    let b = brent(|b| base.row(law, b).load - LOAD, 1e-4, 0.5, 1e-15);
+    let b = brent(|b| base.row(law, b).load - load, 1e-4, 0.5, 1e-15);
     let row = base.row(law, b);
     RowReference {
         leading_edge: b,
@@ -156,4 +162,66 @@ fn the_paper_layer_on_an_elastic_body_converges_with_the_grid() {
         finest[3],
         finest[0]
     );
+}
+
+/// The slow limit on a rigid base: creep lengths V T of 1/10 and 1/40 of the
+/// default grid's cell (the load scaled with them, `W = L b^2 / (2 R C0)` in the
+/// slow limit, so that the contact keeps its half-width b = 0.02). The pressure
+/// jumps at the leading edge within the first cell and the flow's discrete row
+/// relation has an odd-even mode decaying only as `(r - 2) / (r + 2)` per cell
+/// (r = h / V T); before the flow's upwind correction and its located edges the
+/// peak pressure came out 33 % high at r = 40 (mu and D were right). Now the peak
+/// is within 4 % (measured 3.2 % and 0.1 %; it is a centre value next to the
+/// jump, and the report says it is not resolved), mu and D within 1e-4 and the
+/// energy balance within 1e-3.
+#[test]
+fn a_creep_length_far_below_the_cell_is_one_row_of_the_row_solution() {
+    let b: f64 = 0.02;
+    for creep_length in [1e-5, 1e-6] {
+        let load = creep_length * b * b / (2.0 * RADIUS * COMPLIANCE);
+        let reference = row_reference_at(
+            &Law::Linear {
+                compliance: COMPLIANCE,
+            },
+            creep_length,
+            load,
+        );
+        let mut case = line_case(
+            Layer::maxwell(COMPLIANCE, 1.0, ComplianceLaw::Linear, Integration::Exact),
+            1e9,
+            1024,
+        );
+        case.loading.normal_load = load;
+        case.loading.velocity = Some(creep_length);
+        let s = solve(&case, &SolverParams::default()).unwrap();
+        let m = s.summary();
+        let e = [
+            m.max_pressure / reference.max_pressure - 1.0,
+            m.friction_coefficient / reference.friction - 1.0,
+            m.penetration / reference.approach - 1.0,
+            m.dissipation_friction_coefficient / m.friction_coefficient - 1.0,
+        ];
+        eprintln!(
+            "L = {creep_length:e}, h / L = {:.1}: p_max {:+.2e}, mu {:+.2e}, D {:+.2e}, \
+             energy balance {:+.2e}",
+            m.cell_size / creep_length,
+            e[0],
+            e[1],
+            e[2],
+            e[3]
+        );
+        assert!(e[0].abs() < 0.04, "p_max {:e}", e[0]);
+        if m.cell_size > 2.0 * creep_length {
+            let warnings = report::model_warnings(&case, &s);
+            assert!(
+                warnings
+                    .iter()
+                    .any(|w| w.contains("max_pressure follows the cell")),
+                "{warnings:?}"
+            );
+        }
+        assert!(e[1].abs() < 1e-4, "mu {:e}", e[1]);
+        assert!(e[2].abs() < 1e-4, "D {:e}", e[2]);
+        assert!(e[3].abs() < 1e-3, "energy balance {:e}", e[3]);
+    }
 }

@@ -9,6 +9,12 @@
 //! under the paper's nonlinear layer; the pressure, approach, friction, the XZ
 //! section at six depths (both sides of the interface and the coating's middle
 //! included) and two rows of the surface, both interface sides and a plane below.
+//!
+//! The two cases under the layer were recorded with the layer's former row scheme
+//! (the paper's Maxwell layer then had neither the flow's upwind correction nor its
+//! leading edges located inside their cells), so their contact is no longer the
+//! recorded one: for them the stresses, a property of the body alone, are computed
+//! from the recorded pressure, and their contact results are not compared.
 
 use serde_json::Value;
 use thirdbody::stress::{Section, Side};
@@ -57,17 +63,23 @@ fn one_layer_stack_reproduces_the_recorded_coated_results() {
             r["thickness"].as_f64().unwrap(),
             r["layered"].as_bool().unwrap(),
         );
-        let s = solve(&c, &SolverParams::default()).unwrap();
+        let mut s = solve(&c, &SolverParams::default()).unwrap();
         let expected = numbers(&r["pressure"]);
-        let peak = expected.iter().fold(0.0f64, |m, &v| m.max(v));
-        let dp = worst(&s.pressure, &expected) / peak;
-        let dmu = (s.summary().friction_coefficient - r["friction"].as_f64().unwrap()).abs();
-        let dd = (s.approach - r["approach"].as_f64().unwrap()).abs()
-            / r["approach"].as_f64().unwrap().abs();
-        eprintln!("{name}: pressure {dp:.1e} of the peak, mu {dmu:.1e}, approach {dd:.1e}");
-        assert!(dp < 1e-9, "{name}: pressure off by {dp:.1e} of the peak");
-        assert!(dmu < 1e-9, "{name}: friction off by {dmu:.1e}");
-        assert!(dd < 1e-9, "{name}: approach off by {dd:.1e}");
+        if r["layered"].as_bool().unwrap() {
+            // The body's stresses under the recorded pressure (module docs).
+            s.pressure = expected;
+            s.contact_edges.clear();
+        } else {
+            let peak = expected.iter().fold(0.0f64, |m, &v| m.max(v));
+            let dp = worst(&s.pressure, &expected) / peak;
+            let dmu = (s.summary().friction_coefficient - r["friction"].as_f64().unwrap()).abs();
+            let dd = (s.approach - r["approach"].as_f64().unwrap()).abs()
+                / r["approach"].as_f64().unwrap().abs();
+            eprintln!("{name}: pressure {dp:.1e} of the peak, mu {dmu:.1e}, approach {dd:.1e}");
+            assert!(dp < 1e-9, "{name}: pressure off by {dp:.1e} of the peak");
+            assert!(dmu < 1e-9, "{name}: friction off by {dmu:.1e}");
+            assert!(dd < 1e-9, "{name}: approach off by {dd:.1e}");
+        }
         let depths = numbers(&r["depths"]);
         let sections = r["sections"].as_object().unwrap();
         for (label, section) in [

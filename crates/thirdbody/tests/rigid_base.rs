@@ -402,7 +402,7 @@ fn solve_and_compare(name: &str, case: &Case, reference: &Reference) -> Errors {
          {:+.2}, {:+.2}], body/layer w = {:.1e}, iterations {}, residual {:.1e}",
         s.nx,
         s.ny,
-        VELOCITY * RELAXATION_TIME / h,
+        case.loading.velocity.unwrap() * RELAXATION_TIME / h,
         s.max_pressure,
         errors.max_pressure,
         s.friction_coefficient,
@@ -505,6 +505,62 @@ fn table_layer_on_a_rigid_base_matches_the_row_ode() {
             assert_secant_invertible(&c, reference.max_pressure);
         }
         compare_with_oracle(&format!("table, {integration:?}"), table.clone(), reference);
+    }
+}
+
+/// The slow limit: creep lengths L = V T of a tenth and a hundredth of the fine
+/// grid's cell, the load scaled (`Q = (4/3) L b0^3 / (2 R C0)`, the rows' slow
+/// limit) so that the contact is the same near half disc of radius 0.04. The
+/// pressure jumps at the leading edge (a boundary layer of width L inside the
+/// first cell) and the flow's discrete relation between neighbouring cells has an
+/// odd-even mode that decays only as `(r - 2) / (r + 2)` per cell, r = h / L;
+/// before the flow's upwind correction and its located edges the mode rang across
+/// the contact and the dissipated power came out 10-20 % off the friction. Now mu
+/// and D are within 1 % of the oracle and the energy balance within 2e-3; the
+/// peak, a centre value next to the jump, is still up to 11 % high, and the report
+/// says that it is not resolved.
+#[test]
+fn a_creep_length_far_below_the_cell_matches_the_oracle() {
+    let b0: f64 = 0.04;
+    for creep_length in [1e-4, 1e-5] {
+        let load = 4.0 / 3.0 * creep_length * b0.powi(3) / (2.0 * RADIUS * COMPLIANCE);
+        let oracle = RigidBase {
+            radius: RADIUS,
+            creep_length,
+            load,
+        };
+        let reference = oracle.solve(&Law::Linear {
+            compliance: COMPLIANCE,
+        });
+        let mut case = rigid_base_case(layer(ComplianceLaw::Linear, Integration::Exact), GRIDS[1]);
+        case.loading.normal_load = load;
+        case.loading.velocity = Some(creep_length / RELAXATION_TIME);
+        let name = format!("linear, L = {creep_length:e}");
+        let errors = solve_and_compare(&name, &case, &reference);
+        // The peak is a centre value next to the jump: measured +10.8 % (L = h / 10)
+        // and +0.4 % (h / 100), which the report flags as unresolved.
+        Errors {
+            max_pressure: 0.0,
+            ..errors
+        }
+        .assert_within(0.01, &name);
+        assert!(
+            errors.max_pressure.abs() < 0.12,
+            "{name}: {:e}",
+            errors.max_pressure
+        );
+        let solution = thirdbody::solve(&case, &SolverParams::default()).unwrap();
+        let warnings = thirdbody::report::model_warnings(&case, &solution);
+        assert!(
+            warnings
+                .iter()
+                .any(|w| w.contains("max_pressure follows the cell")),
+            "{name}: {warnings:?}"
+        );
+        let s = solution.summary();
+        let balance = s.dissipation_friction_coefficient / s.friction_coefficient - 1.0;
+        eprintln!("{name}: energy balance {balance:+.2e}");
+        assert!(balance.abs() < 2e-3, "{name}: energy balance {balance:e}");
     }
 }
 

@@ -155,7 +155,10 @@ pub fn write_summary(out: &mut Staging, summary: &Value) -> Result<()> {
 pub fn write_all(dir: &Path, o: &SolveOutputs) -> Result<Vec<PathBuf>> {
     let (case, solution) = (o.case, o.solution);
     let g = &solution.grid;
-    let p = &solution.pressure;
+    // What each cell carries on average: the centre value but where a contact's edge
+    // cuts the cell (the load, the friction and the stresses integrate this).
+    let mean = solution.mean_pressure();
+    let p: &[f64] = &mean;
     let mut out = Staging::new(dir)?;
     write_summary(&mut out, o.summary)?;
     out.write("case.toml", |path| Ok(std::fs::write(path, o.case_text)?))?;

@@ -70,16 +70,39 @@
 //! (it leaves the free gap a kink there), and where the free gap closes, as leading
 //! edges are, once the branches relax within a few cells: the two ends of a contact
 //! then have the same errors, which cancel in the friction of a nearly relaxed
-//! layer (the small difference between them). No edges are placed where every
-//! branch is frozen (infinite speed) or relaxed within a cell to the last double:
-//! the layer is then a spring bed, and its contact the spring bed's.
+//! layer (the small difference between them); a flow always lags, with the share
+//! `1 - e^(-h / (V T))` of its compliance (where the cell is short against `V T`
+//! the flow is a small part of a cell's response). No edges are placed where
+//! nothing flows and every branch is frozen (infinite speed) or relaxed within a
+//! cell to the last double: the layer is then a spring bed, and its contact the
+//! spring bed's.
 //!
-//! For the paper's Maxwell layer (`C_g = C_v = C[0]`, no branches) this is exactly
-//! the sum of paper eq. 8 read with the loaded cell's compliance (`secant`) or its
-//! exact integral (`exact`); the other reading of eq. 8, with the receiving cell's
-//! compliance multiplying all upstream creep, folds at low `V T / h` and is not
-//! offered. Applying the layer is one sweep per row from the leading edge with one
-//! state per branch: O(n (1 + branches)). Rows (fixed y) do not interact. The
+//! The flow's centre value has the same kind of mode. With `r = h / (V T)` and the
+//! glassy spring in series, imposing `w_i` fixes `(1 + r/2) p_i + (r/2 - 1)
+//! p_{i+1} = ...` (the trapezoidal rule's recursion): the error factor per cell is
+//! `-(r - 2) / (r + 2)`, near -1 where the creep length is far below the cell (the
+//! slow limit of the paper's Maxwell layer, and always -1 for a flow without a
+//! spring). Undamped, the leading edge's jump rang across the contact: at `V T =
+//! h / 40` the peak pressure came out up to 75 % high and the power dissipated,
+//! which weighs `p^2`, 10-20 % above the slope's friction (the friction itself, a
+//! linear functional, was right). The flow's centre value is therefore
+//! `(h / V T) (sum_{j upstream} q_j + q_i / 2 + (q_i - q_{i+1}) / 16)`, `q = C[p]
+//! p`: for a smooth pressure the correction is `O(h^2 / (V T))` against the flow's
+//! `O(h / (V T))` per cell, of the scheme's own second order, and in the slow limit
+//! the recursion's two roots are both -1/3 (1/16 makes them equal; larger or
+//! smaller shares leave one of them larger). Its leading edges are located as the
+//! branches' are (above): in an entry cell the creep rate is integrated from the
+//! edge, linear through the downstream neighbour's
+//! (`theta q_i - theta^2 (q_{i-1} - q_i) / 2` at the centre, without the
+//! correction), and the cell passes downstream the rate integrated over its loaded
+//! part, with the weights of its mean pressure ([`ContactEdge::mean_weights`]).
+//! Without the correction and the edges this is the sum of paper eq. 8 read with
+//! the loaded cell's compliance (`secant`) or its exact integral (`exact`); the
+//! other reading of eq. 8, with the receiving cell's compliance multiplying all
+//! upstream creep, folds at low `V T / h` and is not offered.
+//!
+//! Applying the layer is one sweep per row from the leading edge with one state per
+//! branch: O(n (1 + branches)). Rows (fixed y) do not interact. The
 //! Jacobian is lower triangular in the material order but for one entry per cell:
 //! the centred slope's dependence on the downstream neighbour, which the Newton
 //! preconditioner leaves out.
@@ -87,7 +110,8 @@
 //! The power dissipated ([`ViscoelasticRows::dissipated_force`]) is the power of the
 //! pressure on the parts that do not store energy: `p dw_v/dt` for the flow and
 //! `(p - F_k^{-1}(w_k)) dw_k/dt` for branch k. Over a cell the flow dissipates
-//! `p_i (w_v,out - w_v,in)`. Downstream of the window a branch relaxes at zero
+//! `p_i (w_v,out - w_v,in)`, in an entry cell `int p dw_v` over its loaded part with
+//! the pressure and the creep rate linear as above. Downstream of the window a branch relaxes at zero
 //! pressure and dissipates the energy it still holds, so summed along a whole row
 //! the stored energies `Phi_k(w) = int_0^w F_k^{-1}` cancel and the branch
 //! dissipates exactly `int p dw_k` along the row. That integral is taken exactly
@@ -128,6 +152,11 @@ fn dot(u: &[f64], v: &[f64]) -> f64 {
 
 /// Fraction of the full upwind correction applied (module docs).
 const UPWIND: f64 = 0.1;
+
+/// Share of the flow's upwind correction `FLOW_UPWIND (h / V T) (q_i - q_upstream)`
+/// (module docs): 1/16 puts both roots of the slow limit's recursion at -1/3, the
+/// strongest damping of the odd-even mode this correction gives.
+const FLOW_UPWIND: f64 = 1.0 / 16.0;
 
 /// Smallest distance from a contact's edge to its entry cell's centre, in cells.
 const MIN_ENTRY: f64 = 1e-6;
@@ -355,6 +384,19 @@ fn entry_share(branches: &[BranchStep], theta: f64) -> f64 {
         .sum()
 }
 
+/// What the flow of an entry cell at `theta` passes downstream, per unit of its own
+/// creep rate and of its downstream neighbour's: the creep rate integrated from the
+/// edge over the cell, linear through the two centres (the cell's mean pressure,
+/// [`ContactEdge::mean_weights`]; constant without a neighbour).
+fn entry_flow_weights(theta: f64, has_neighbour: bool) -> (f64, f64) {
+    ContactEdge {
+        cell: 1,
+        neighbour: has_neighbour.then_some(0),
+        theta,
+    }
+    .mean_weights()
+}
+
 /// `(1 - e^(-y) (1 + y)) / y`: a branch started at zero and driven over `y` creep
 /// lengths by a forcing that rises by 1 per creep length, less the same forcing's
 /// final value times `1 - e^(-y)`, changes sign: this is what it lags behind (`y/2`
@@ -467,6 +509,7 @@ impl ViscoelasticRows {
             }
             _ => 0.0,
         };
+        let flow_scale = form.flow.map_or(0.0, |f| f.compliance / reference);
         let branches = form
             .branches
             .iter()
@@ -510,15 +553,25 @@ impl ViscoelasticRows {
             entries: Vec::new(),
             edge_list: Vec::new(),
             edge_history: Vec::new(),
-            locates_edges: branches
-                .iter()
-                .any(|b| b.cells_per_creep_length > 0.0 && b.keep_half > 0.0),
-            trailing_by_pressure: {
-                let total: f64 = branches.iter().map(|b| b.scale).sum();
-                let lagging: f64 = branches
+            locates_edges: flow_per_cell > 0.0
+                || branches
                     .iter()
-                    .map(|b| b.scale * (-b.cells_per_creep_length / TRAILING_CELLS).exp())
-                    .sum();
+                    .any(|b| b.cells_per_creep_length > 0.0 && b.keep_half > 0.0),
+            trailing_by_pressure: {
+                // The flow never relaxes, but where a cell is short against its
+                // creep length V T it is a small part of the cell's response: its
+                // share of lag grows as 1 - e^(-h / V T).
+                let flow = if flow_per_cell > 0.0 {
+                    -flow_scale * (-flow_per_cell / flow_scale).exp_m1()
+                } else {
+                    0.0
+                };
+                let total: f64 = flow + branches.iter().map(|b| b.scale).sum::<f64>();
+                let lagging: f64 = flow
+                    + branches
+                        .iter()
+                        .map(|b| b.scale * (-b.cells_per_creep_length / TRAILING_CELLS).exp())
+                        .sum::<f64>();
                 if total > 0.0 {
                     lagging / total
                 } else {
@@ -622,6 +675,7 @@ impl ViscoelasticRows {
         let entry = |i: usize| entries.get(i).copied().unwrap_or(0.0);
         let mut upstream = 0.0;
         let mut upstream_forcing = 0.0;
+        let mut upstream_creep = 0.0;
         state.fill(0.0);
         // The cell's forcing and creep rate, and the downstream cell's forcing (the
         // slope of the forcing is centred), each law evaluation done once per cell.
@@ -639,10 +693,24 @@ impl ViscoelasticRows {
                     .zip(state.iter())
                     .map(|(b, e)| b.keep_half * e)
                     .sum();
-                free[i] = self.flow_per_cell * upstream + carried;
+                free[i] = self.flow_per_cell * (upstream - FLOW_UPWIND * upstream_creep) + carried;
             }
             let theta = entry(i);
             let mut retarded = 0.0;
+            // The flow's centre value, and what the cell passes downstream (module
+            // docs: from a located edge, the creep rate linear through the
+            // downstream neighbour's).
+            let (flow, passed) = if theta > 0.0 {
+                // Without a downstream neighbour (the window's end) the rate is
+                // constant from the edge.
+                let next_creep = if i > 0 { here.1 .0 } else { q };
+                let (a, b) = entry_flow_weights(theta, i > 0);
+                let centre = theta * q - 0.5 * theta * theta * (next_creep - q);
+                (upstream + centre, a * q + b * next_creep)
+            } else {
+                let correction = FLOW_UPWIND * (q - upstream_creep);
+                (upstream + 0.5 * q + correction, q)
+            };
             if theta > 0.0 {
                 // A contact's entry cell: the branches are forced from the edge on.
                 let d = next_forcing - f;
@@ -670,9 +738,10 @@ impl ViscoelasticRows {
                     retarded += self.upwind * (f - upstream_forcing) + self.lag_half * rise;
                 }
             }
-            wrow[i] = self.glassy_scale * f + self.flow_per_cell * (upstream + 0.5 * q) + retarded;
-            upstream += q;
+            wrow[i] = self.glassy_scale * f + self.flow_per_cell * flow + retarded;
+            upstream += passed;
             upstream_forcing = f;
+            upstream_creep = q;
         }
     }
 
@@ -696,10 +765,23 @@ impl ViscoelasticRows {
             } else {
                 (0.0, 0.0)
             };
-            row += p * (self.flow_per_cell * q);
+            let theta = entry(i);
+            row += self.flow_per_cell
+                * if theta > 0.0 && i > 0 {
+                    // From the edge, pressure and creep rate linear through the
+                    // downstream centre: int (p + dp u)(q + dq u) du over
+                    // u in (-theta, 1/2).
+                    let (dp, dq) = (downstream.0 - p, here.1 .0 - q);
+                    let first = 0.5 * (0.25 - theta * theta);
+                    let second = (0.125 + theta * theta * theta) / 3.0;
+                    p * q * (theta + 0.5) + (p * dq + q * dp) * first + dp * dq * second
+                } else if theta > 0.0 {
+                    p * q * (theta + 0.5)
+                } else {
+                    p * q
+                };
             if !self.branches.is_empty() {
                 let exit = (0.5 * (p + downstream.0), 0.5 * (f + downstream.1));
-                let theta = entry(i);
                 if theta > 0.0 {
                     // Free relaxation from the upstream centre to the edge, then the
                     // loaded part of the cell, reconstructed linearly through the
@@ -779,8 +861,10 @@ impl ViscoelasticRows {
                     flow_slope[k] = self.flow_per_cell * dq;
                     forcing_slope[k] = df;
                     let retarded = self.branch_own * df;
-                    diagonal[k] =
-                        self.glassy_scale * df + 0.5 * flow_slope[k] + retarded + self.upwind * df;
+                    diagonal[k] = self.glassy_scale * df
+                        + (0.5 + FLOW_UPWIND) * flow_slope[k]
+                        + retarded
+                        + self.upwind * df;
                     if lag_self != 0.0 {
                         // The upstream cell's exit value falls with this cell's
                         // forcing (the centred slope there), and reaches the centre.
@@ -815,10 +899,20 @@ impl ViscoelasticRows {
                     b.scale * (of_forcing - of_slope)
                 })
                 .sum();
-            diagonal[k] = (self.glassy_scale + own) * df + 0.5 * self.flow_per_cell * dq;
-            if k % self.nx > 0 {
+            // The flow from the edge: `theta q_k - theta^2 (q_{k-1} - q_k) / 2` at
+            // the centre, `b q_{k-1}` of what it passes on reaching the downstream
+            // neighbour's own centre value.
+            let neighbour = k % self.nx > 0;
+            let flow_own = if neighbour {
+                theta + 0.5 * theta * theta
+            } else {
+                theta
+            };
+            diagonal[k] = (self.glassy_scale + own) * df + flow_own * self.flow_per_cell * dq;
+            if neighbour {
                 diagonal[k - 1] +=
                     (lag_self + entry_share(&self.branches, theta)) * forcing_slope[k - 1];
+                diagonal[k - 1] += entry_flow_weights(theta, true).1 * flow_slope[k - 1];
             }
         }
         ViscoelasticJacobian {
@@ -978,6 +1072,7 @@ impl ViscoelasticJacobian {
                 let fslope = &self.forcing_slope[base..base + nx];
                 let mut upstream = 0.0;
                 let mut upstream_forcing = 0.0;
+                let mut upstream_flow = 0.0;
                 // While nothing has entered the branches, they carry nothing.
                 let mut live = false;
                 state.fill(0.0);
@@ -1008,6 +1103,10 @@ impl ViscoelasticJacobian {
                         // `diag` holds the own terms; the downstream neighbour's
                         // through the slope.
                         orow[i] = diag[i] * drow[i] + upstream + carried + across * next;
+                        if i > 0 {
+                            // The flow's reach to the downstream neighbour.
+                            orow[i] -= 0.5 * theta * theta * slope[i - 1] * drow[i - 1];
+                        }
                     } else {
                         let before_entry = i > 0 && self.entry(base + i - 1) > 0.0;
                         let downstream = if before_entry { 0.0 } else { next };
@@ -1021,7 +1120,8 @@ impl ViscoelasticJacobian {
                             0.0
                         };
                         orow[i] = diag[i] * drow[i] + upstream + entering
-                            - self.upwind * upstream_forcing;
+                            - self.upwind * upstream_forcing
+                            - FLOW_UPWIND * upstream_flow;
                         if branched {
                             // `diag` holds the upstream exit's share, which
                             // `entering` already carries here; and the downstream
@@ -1037,11 +1137,27 @@ impl ViscoelasticJacobian {
                             }
                         }
                     }
-                    upstream += slope[i] * drow[i];
+                    upstream_flow = slope[i] * drow[i];
+                    upstream += self.flow_passed(base, i) * upstream_flow;
                     upstream_forcing = df;
                 }
             },
         );
+    }
+
+    /// How much of its own flow cell `i` of the row starting at flat index `base`
+    /// passes downstream (module docs): `a` of [`entry_flow_weights`] for an entry
+    /// cell, `1 + b` for the cell downstream of one (`b` of its own is already in
+    /// its diagonal), 1 elsewhere.
+    fn flow_passed(&self, base: usize, i: usize) -> f64 {
+        let theta = self.entry(base + i);
+        if theta > 0.0 {
+            return entry_flow_weights(theta, i > 0).0;
+        }
+        match self.entries.get(base + i + 1) {
+            Some(&up) if up > 0.0 && i + 1 < self.nx => 1.0 + entry_flow_weights(up, true).1,
+            _ => 1.0,
+        }
     }
 
     /// `sum_k b_k (C_k / C[0]) entry_exit_gain_k(theta)`: the part of a cell's
@@ -1068,6 +1184,7 @@ impl ViscoelasticJacobian {
                 let base = row * nx;
                 let mut upstream = 0.0;
                 let mut upstream_forcing = 0.0;
+                let mut upstream_flow = 0.0;
                 let mut live = false;
                 state.fill(0.0);
                 for i in (0..nx).rev() {
@@ -1087,7 +1204,12 @@ impl ViscoelasticJacobian {
                             0.0
                         };
                         let upwind = if theta > 0.0 { 0.0 } else { self.upwind };
-                        y[i] = (r[k] - upstream - entering + upwind * upstream_forcing - lag) / d;
+                        let flow_upwind = if theta > 0.0 { 0.0 } else { FLOW_UPWIND };
+                        y[i] = (r[k] - upstream - entering
+                            + upwind * upstream_forcing
+                            + flow_upwind * upstream_flow
+                            - lag)
+                            / d;
                     } else {
                         y[i] = 0.0;
                     }
@@ -1119,7 +1241,8 @@ impl ViscoelasticJacobian {
                         }
                         self.advance(state, df, upstream_forcing);
                     }
-                    upstream += self.flow_slope[k] * y[i];
+                    upstream_flow = self.flow_slope[k] * y[i];
+                    upstream += self.flow_passed(base, i) * upstream_flow;
                     upstream_forcing = df;
                 }
             },
@@ -1363,8 +1486,9 @@ mod tests {
     }
 
     #[test]
-    fn maxwell_row_sweep_matches_the_explicit_sum() {
-        // Explicit double loop over eq. 8 (exact integral) as in the module docs.
+    fn maxwell_row_sweep_matches_the_explicit_sum_and_correction() {
+        // Explicit double loop over eq. 8 (exact integral) and the upwind correction,
+        // as in the module docs.
         let op = ViscoelasticRows::new(sigmoid(0.5, 0.002, Integration::Exact), 5, 2, 0.1, 0.05);
         let p: Vec<f64> = (0..10).map(|k| 0.001 * ((k * 7) % 5) as f64).collect();
         let mut w = vec![0.0; 10];
@@ -1377,7 +1501,15 @@ mod tests {
                     s += op.creep(p[r * 5 + j]).0;
                 }
                 let own = op.creep(p[r * 5 + i]).0;
-                let e = op.layer.law_at(p[r * 5 + i]).integral + k * (s + own / 2.0);
+                // The upwind correction of the module docs, 1/16 of the difference
+                // from the upstream cell (none beyond the window).
+                let upstream = if i + 1 < 5 {
+                    op.creep(p[r * 5 + i + 1]).0
+                } else {
+                    0.0
+                };
+                let e = op.layer.law_at(p[r * 5 + i]).integral
+                    + k * (s + own / 2.0 + (own - upstream) / 16.0);
                 assert!((w[r * 5 + i] - e).abs() < 1e-15);
             }
         }

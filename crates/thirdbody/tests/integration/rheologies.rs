@@ -356,7 +356,7 @@ fn every_preset_agrees_with_the_dense_reference() {
 }
 
 #[test]
-fn the_energy_balance_warns_only_where_the_two_estimates_disagree() {
+fn the_energy_balance_holds_and_the_report_stays_quiet_across_creep_lengths() {
     // Creep lengths V tau from a thousandth of a cell (48^2, cell about 3e-3) to
     // the slow limit (1e-9), and infinite speed (nothing creeps): both friction
     // estimates are resolved (the layer's lag is carried inside the cells), agree
@@ -391,18 +391,23 @@ fn the_energy_balance_warns_only_where_the_two_estimates_disagree() {
             }
         }
     }
-    // The paper's Maxwell layer at a creep length V T of 1e-4 on 32^2 (the flow is
-    // integrated cell-wise constant, without the branches' reconstruction): the
-    // two estimates disagree by about a quarter, and the report says so.
+    // The paper's Maxwell layer at a creep length V T of 1e-4 on 32^2 (0.03 cells):
+    // its flow has a leading-edge jump and an odd-even mode that, undamped, put the
+    // two estimates a quarter apart (the report warned); with the flow's upwind
+    // correction and its edges located they agree, and the report is quiet. (The
+    // warning itself: `report::tests`.)
     let maxwell = Rheology::Maxwell {
         compliance: 0.02,
         relaxation_time: 1.0,
     };
     let coarse = with_layer(maxwell, ComplianceLaw::Linear, 1e-4, 32);
     let s = solve_to(&coarse, 1e-12);
-    let w = thirdbody::report::model_warnings(&coarse, &s);
-    assert!(
-        w.iter().any(|m| m.contains("energy balance is off")),
-        "{w:?}"
+    let sum = s.summary();
+    let (mu, d) = (
+        sum.friction_coefficient,
+        sum.dissipation_friction_coefficient,
     );
+    assert!((d / mu - 1.0).abs() < 5e-3, "{mu} {d}");
+    let w = thirdbody::report::model_warnings(&coarse, &s);
+    assert!(!w.iter().any(|m| m.contains("energy balance")), "{w:?}");
 }
