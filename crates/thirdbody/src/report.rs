@@ -161,7 +161,7 @@ pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
 /// A layer's flow whose creep length `V T` is below this many cells leaves the
 /// pressure's rise behind the leading edge inside the entry cell, so that the
 /// reported peak is not resolved ([`model_warnings`] says so).
-pub const FLOW_BOUNDARY_LAYER_CELLS: f64 = 0.5;
+pub const FLOW_BOUNDARY_LAYER_CELLS: f64 = 1.0;
 
 /// Cells from the pressure's maximum within which an unloaded cell means the peak is
 /// not resolved.
@@ -173,10 +173,11 @@ pub const EDGE_PEAK_CELLS: usize = 3;
 /// the contact, or behind the glassy leading edge of a viscoelastic body), whose
 /// value then follows the cell size. A layer places its contacts' edges inside
 /// their cells and its leading-edge jumps are resolved that way, so it is left out,
-/// but for a flow whose creep length `V T` is below [`FLOW_BOUNDARY_LAYER_CELLS`]:
-/// the pressure then rises to its peak within that length behind the leading edge,
-/// inside the entry cell, and the centre values next to it overshoot the peak by up
-/// to about a tenth (docs/validation.md).
+/// but for a flow whose creep length `V T` is below [`FLOW_BOUNDARY_LAYER_CELLS`]
+/// cells: the pressure then rises to its peak within that length behind the
+/// leading edge, inside the entry cell, and the centre values next to it overshoot
+/// the peak (on a rigid base by 1 % at `V T = h`, 4 % at h / 2, 11 % at h / 10;
+/// docs/validation.md).
 fn edge_peak_warning(case: &Case, solution: &Solution) -> Option<String> {
     if let Some(layer) = &case.layer {
         let speed = case.loading.velocity.unwrap_or(f64::INFINITY);
@@ -209,8 +210,8 @@ fn edge_peak_warning(case: &Case, solution: &Solution) -> Option<String> {
         format!(
             "the pressure peaks within {r} cells of the contact's edge ({at}): the \
              peak is narrower than the cells resolve (e.g. an edge concentration under a \
-             stiff thin coating, a glassy leading edge, a layer that flows less than half \
-             a cell in its relaxation time, or a contact spot a few cells \
+             stiff thin coating, a glassy leading edge, a layer that flows less than a \
+             cell in its relaxation time, or a contact spot a few cells \
              wide), so max_pressure follows the cell \
              size; refine the grid to converge it (the load, the contact's extent and the \
              friction converge sooner)"

@@ -65,7 +65,7 @@ class Solution:
         """The keys and values of ``summary.json``."""
     @property
     def pressure(self) -> _Array:
-        """Contact pressure."""
+        """Contact pressure: each cell's mean (what its load is), as ``pressure.npy``."""
     @property
     def gap(self) -> _Array:
         """Gap between slider and deformed surface."""

@@ -70,12 +70,14 @@
 //! (it leaves the free gap a kink there), and where the free gap closes, as leading
 //! edges are, once the branches relax within a few cells: the two ends of a contact
 //! then have the same errors, which cancel in the friction of a nearly relaxed
-//! layer (the small difference between them); a flow always lags, with the share
-//! `1 - e^(-h / (V T))` of its compliance (where the cell is short against `V T`
-//! the flow is a small part of a cell's response). No edges are placed where
-//! nothing flows and every branch is frozen (infinite speed) or relaxed within a
-//! cell to the last double: the layer is then a spring bed, and its contact the
-//! spring bed's.
+//! layer (the small difference between them). A flow's trailing edges are placed
+//! by the free gap too (by the pressure's line, the placement is neutral: the
+//! cell's centre value follows the edge so that its mean stays, and the edge
+//! stopped wherever its iteration began, a result that depended on the units to
+//! 2e-7). No edges are placed where the
+//! flow is below a thousandth of a cell's own response and every branch is frozen
+//! (infinite speed) or relaxed within a cell to the last double: the layer is then
+//! a spring bed, and its contact the spring bed's.
 //!
 //! The flow's centre value has the same kind of mode. With `r = h / (V T)` and the
 //! glassy spring in series, imposing `w_i` fixes `(1 + r/2) p_i + (r/2 - 1)
@@ -157,6 +159,11 @@ const UPWIND: f64 = 0.1;
 /// (module docs): 1/16 puts both roots of the slow limit's recursion at -1/3, the
 /// strongest damping of the odd-even mode this correction gives.
 const FLOW_UPWIND: f64 = 1.0 / 16.0;
+
+/// Share of a cell's own response below which the flow does not place the
+/// contacts' edges (it then barely lags: `h / (V T)` below about 1e-3 with a
+/// glassy spring of the flow's compliance).
+const FLOW_EDGE_SHARE: f64 = 1e-3;
 
 /// Smallest distance from a contact's edge to its entry cell's centre, in cells.
 const MIN_ENTRY: f64 = 1e-6;
@@ -509,7 +516,6 @@ impl ViscoelasticRows {
             }
             _ => 0.0,
         };
-        let flow_scale = form.flow.map_or(0.0, |f| f.compliance / reference);
         let branches = form
             .branches
             .iter()
@@ -553,25 +559,19 @@ impl ViscoelasticRows {
             entries: Vec::new(),
             edge_list: Vec::new(),
             edge_history: Vec::new(),
-            locates_edges: flow_per_cell > 0.0
+            // The flow places edges where it is a noticeable part of a cell's own
+            // response (not where the cell is a billionth of its creep length).
+            locates_edges: 0.5 * flow_per_cell
+                > FLOW_EDGE_SHARE * (glassy_scale + branch_own + 0.5 * flow_per_cell)
                 || branches
                     .iter()
                     .any(|b| b.cells_per_creep_length > 0.0 && b.keep_half > 0.0),
             trailing_by_pressure: {
-                // The flow never relaxes, but where a cell is short against its
-                // creep length V T it is a small part of the cell's response: its
-                // share of lag grows as 1 - e^(-h / V T).
-                let flow = if flow_per_cell > 0.0 {
-                    -flow_scale * (-flow_per_cell / flow_scale).exp_m1()
-                } else {
-                    0.0
-                };
-                let total: f64 = flow + branches.iter().map(|b| b.scale).sum::<f64>();
-                let lagging: f64 = flow
-                    + branches
-                        .iter()
-                        .map(|b| b.scale * (-b.cells_per_creep_length / TRAILING_CELLS).exp())
-                        .sum::<f64>();
+                let total: f64 = branches.iter().map(|b| b.scale).sum();
+                let lagging: f64 = branches
+                    .iter()
+                    .map(|b| b.scale * (-b.cells_per_creep_length / TRAILING_CELLS).exp())
+                    .sum();
                 if total > 0.0 {
                     lagging / total
                 } else {

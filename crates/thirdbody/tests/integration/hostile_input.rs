@@ -140,9 +140,10 @@ fn results_outside_the_model_carry_warnings() {
             .unwrap()
             .case
     };
-    // On 64^2 (on 32^2 friction and dissipated power disagree by more than the
-    // grid's stated accuracy, which is itself a warning).
-    let inside = parse(&text.replace("cells = [32, 32]", "cells = [64, 64]"));
+    // On the example's 128^2 (on 64^2 the layer's flow creeps V T = h / 2 in its
+    // relaxation time, so the peak, just behind the leading edge, is flagged as not
+    // resolved).
+    let inside = parse(&text.replace("cells = [32, 32]", "cells = [128, 128]"));
     let s = solve(&inside, &SolverParams::default()).unwrap();
     assert!(thirdbody::report::model_warnings(&inside, &s).is_empty());
     let outside = parse(&text.replace("velocity = 1e-3", "velocity = 1e-30"));
