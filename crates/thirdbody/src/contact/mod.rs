@@ -126,7 +126,8 @@ pub enum Progress {
     },
     /// An outer iteration finished.
     Iteration {
-        /// Iteration number in this window.
+        /// Iteration number in this window (counting on through the solves again
+        /// with the contacts' edges located, as the summary's `iterations` does).
         iteration: usize,
         /// Relative residual after it.
         residual: f64,
@@ -733,7 +734,21 @@ pub fn solve_problem(
                 let Some(layer) = moved else { break };
                 let placed = problem.layer.replace(layer);
                 let before = p.clone();
-                let again = match newton::semismooth_newton(problem, &mut p, params, observer) {
+                // Its iterations continue the count the summary reports.
+                let offset = r.iterations;
+                let mut counted = |progress: Progress| {
+                    observer(match progress {
+                        Progress::Iteration {
+                            iteration,
+                            residual,
+                        } => Progress::Iteration {
+                            iteration: iteration + offset,
+                            residual,
+                        },
+                        other => other,
+                    })
+                };
+                let again = match newton::semismooth_newton(problem, &mut p, params, &mut counted) {
                     Ok(again) => again,
                     Err(Error::Interrupted) => return Err(Error::Interrupted),
                     Err(_) => {
@@ -944,5 +959,24 @@ mod tests {
         });
         assert!(matches!(result, Err(Error::Interrupted)));
         assert_eq!(windows, 1);
+    }
+
+    #[test]
+    fn iterations_count_on_through_the_solves_with_located_edges() {
+        // The paper's Maxwell layer places its contacts' edges and solves again:
+        // the progress events number the iterations of the last window as its
+        // summary counts them, one after another.
+        let case = crate::test_cases::parse(crate::test_cases::MAXWELL_LAYER);
+        let mut numbers = Vec::new();
+        let s = solve_observed(&case, &SolverParams::default(), &mut |p| {
+            match p {
+                Progress::Window { .. } => numbers.clear(),
+                Progress::Iteration { iteration, .. } => numbers.push(iteration),
+            }
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        assert!(!s.contact_edges.is_empty(), "no edges were located");
+        assert_eq!(numbers, (1..=s.info.iterations).collect::<Vec<_>>());
     }
 }
