@@ -74,10 +74,13 @@
 //! by the free gap too (by the pressure's line, the placement is neutral: the
 //! cell's centre value follows the edge so that its mean stays, and the edge
 //! stopped wherever its iteration began, a result that depended on the units to
-//! 2e-7). No edges are placed where the
-//! flow is below a thousandth of a cell's own response and every branch is frozen
-//! (infinite speed) or relaxed within a cell to the last double: the layer is then
-//! a spring bed, and its contact the spring bed's.
+//! 2e-7). The flow places edges only where a cell of it exceeds the springs'
+//! response (`h / (V T) > C_g / C_v` without branches): below, the pressure rises
+//! behind the leading edge over a cell or more, and the edges changed the friction
+//! by less than 2e-4 at two to three times the cost. No edges are placed where the
+//! flow places none and every branch is frozen (infinite speed) or relaxed within
+//! a cell to the last double: the layer is then a spring bed, and its contact the
+//! spring bed's.
 //!
 //! The flow's centre value has the same kind of mode. With `r = h / (V T)` and the
 //! glassy spring in series, imposing `w_i` fixes `(1 + r/2) p_i + (r/2 - 1)
@@ -160,10 +163,16 @@ const UPWIND: f64 = 0.1;
 /// strongest damping of the odd-even mode this correction gives.
 const FLOW_UPWIND: f64 = 1.0 / 16.0;
 
-/// Share of a cell's own response below which the flow does not place the
-/// contacts' edges (it then barely lags: `h / (V T)` below about 1e-3 with a
-/// glassy spring of the flow's compliance).
-const FLOW_EDGE_SHARE: f64 = 1e-3;
+/// Share of a cell's own response (half a cell of flow against the springs' and
+/// that) below which the flow does not place the contacts' edges: 1/3, where a
+/// whole cell of flow equals the springs' response (`h / (V T) = 1` for the
+/// paper's Maxwell layer). Below it the pressure's rise behind a leading edge,
+/// over `(C_g / C_v) V T`, spans a cell or more and the centre values follow it
+/// (and the mode the upwind correction damps does not alternate: its factor
+/// `-(r - 2) / (r + 2)` is positive below r = 2); there the located edges changed
+/// the friction by less than 2e-4 and cost two to three times the solve (the
+/// paper's Fig. 3 at 256^2: 198 ms without them, 483 ms with).
+const FLOW_EDGE_SHARE: f64 = 1.0 / 3.0;
 
 /// Smallest distance from a contact's edge to its entry cell's centre, in cells.
 const MIN_ENTRY: f64 = 1e-6;
@@ -559,8 +568,8 @@ impl ViscoelasticRows {
             entries: Vec::new(),
             edge_list: Vec::new(),
             edge_history: Vec::new(),
-            // The flow places edges where it is a noticeable part of a cell's own
-            // response (not where the cell is a billionth of its creep length).
+            // The flow places edges where a cell of it exceeds the springs'
+            // response ([`FLOW_EDGE_SHARE`]).
             locates_edges: 0.5 * flow_per_cell
                 > FLOW_EDGE_SHARE * (glassy_scale + branch_own + 0.5 * flow_per_cell)
                 || branches
