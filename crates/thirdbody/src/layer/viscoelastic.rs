@@ -91,11 +91,16 @@
 //! h / 40` the peak pressure came out up to 75 % high and the power dissipated,
 //! which weighs `p^2`, 10-20 % above the slope's friction (the friction itself, a
 //! linear functional, was right). The flow's centre value is therefore
-//! `(h / V T) (sum_{j upstream} q_j + q_i / 2 + (q_i - q_{i+1}) / 16)`, `q = C[p]
+//! `(h / V T) (sum_{j upstream} q_j + q_i / 2 + kappa (q_i - q_{i+1}))`, `q = C[p]
 //! p`: for a smooth pressure the correction is `O(h^2 / (V T))` against the flow's
 //! `O(h / (V T))` per cell, of the scheme's own second order, and in the slow limit
-//! the recursion's two roots are both -1/3 (1/16 makes them equal; larger or
-//! smaller shares leave one of them larger). Its leading edges are located as the
+//! with `kappa = 1/16` the recursion's two roots are both -1/3 (1/16 makes them
+//! equal; larger or smaller shares leave one of them larger). Where the mode does
+//! not alternate (`r < 2`, with `r` the flow per cell over the springs' own
+//! response) nothing needs damping and the correction would only bias the lag (it
+//! doubled the friction's error on a rigid base at `V T = 10 h`), so `kappa =
+//! (r - 2) / (r + 2) / 16`: 0 up to r = 2, 1/16 in the slow limit and for a flow
+//! without a spring, the roots within 1/3 throughout. Its leading edges are located as the
 //! branches' are (above): in an entry cell the creep rate is integrated from the
 //! edge, linear through the downstream neighbour's
 //! (`theta q_i - theta^2 (q_{i-1} - q_i) / 2` at the centre, without the
@@ -159,9 +164,23 @@ fn dot(u: &[f64], v: &[f64]) -> f64 {
 const UPWIND: f64 = 0.1;
 
 /// Share of the flow's upwind correction `FLOW_UPWIND (h / V T) (q_i - q_upstream)`
-/// (module docs): 1/16 puts both roots of the slow limit's recursion at -1/3, the
-/// strongest damping of the odd-even mode this correction gives.
+/// in the slow limit (module docs): 1/16 puts both roots of that limit's recursion
+/// at -1/3, the strongest damping of the odd-even mode this correction gives.
 const FLOW_UPWIND: f64 = 1.0 / 16.0;
+
+/// The flow's upwind share at `r` cells of flow per cell of the springs' response:
+/// [`FLOW_UPWIND`] times the mode's own error factor `(r - 2) / (r + 2)` where it
+/// alternates (r > 2), 0 where it does not (the scheme is then left as it was); the
+/// recursion's roots stay within 1/3 at every r (module docs).
+fn flow_upwind_share(r: f64) -> f64 {
+    if r.is_infinite() {
+        FLOW_UPWIND
+    } else if r > 2.0 {
+        FLOW_UPWIND * (r - 2.0) / (r + 2.0)
+    } else {
+        0.0
+    }
+}
 
 /// Share of a cell's own response (half a cell of flow against the springs' and
 /// that) below which the flow does not place the contacts' edges: 1/3, where a
@@ -486,6 +505,8 @@ pub struct ViscoelasticRows {
     glassy_scale: f64,
     /// `(C_v / C[0]) h / (V T)`: flow per cell of path, 0 for no flow or infinite V.
     flow_per_cell: f64,
+    /// The flow's upwind share ([`flow_upwind_share`]).
+    flow_upwind: f64,
     branches: Vec<BranchStep>,
     /// `kappa s sum_k (b_k - a_k) C_k / C[0]`: the upwind correction's weight.
     upwind: f64,
@@ -564,7 +585,14 @@ impl ViscoelasticRows {
                 })
                 .sum::<f64>();
         let lag_half = branches.iter().map(|b| b.lag_half).sum();
+        let springs = glassy_scale + branch_own;
+        let flow_upwind = if flow_per_cell > 0.0 {
+            flow_upwind_share(flow_per_cell / springs)
+        } else {
+            0.0
+        };
         ViscoelasticRows {
+            flow_upwind,
             entries: Vec::new(),
             edge_list: Vec::new(),
             edge_history: Vec::new(),
@@ -702,7 +730,8 @@ impl ViscoelasticRows {
                     .zip(state.iter())
                     .map(|(b, e)| b.keep_half * e)
                     .sum();
-                free[i] = self.flow_per_cell * (upstream - FLOW_UPWIND * upstream_creep) + carried;
+                free[i] =
+                    self.flow_per_cell * (upstream - self.flow_upwind * upstream_creep) + carried;
             }
             let theta = entry(i);
             let mut retarded = 0.0;
@@ -717,7 +746,7 @@ impl ViscoelasticRows {
                 let centre = theta * q - 0.5 * theta * theta * (next_creep - q);
                 (upstream + centre, a * q + b * next_creep)
             } else {
-                let correction = FLOW_UPWIND * (q - upstream_creep);
+                let correction = self.flow_upwind * (q - upstream_creep);
                 (upstream + 0.5 * q + correction, q)
             };
             if theta > 0.0 {
@@ -871,7 +900,7 @@ impl ViscoelasticRows {
                     forcing_slope[k] = df;
                     let retarded = self.branch_own * df;
                     diagonal[k] = self.glassy_scale * df
-                        + (0.5 + FLOW_UPWIND) * flow_slope[k]
+                        + (0.5 + self.flow_upwind) * flow_slope[k]
                         + retarded
                         + self.upwind * df;
                     if lag_self != 0.0 {
@@ -925,6 +954,7 @@ impl ViscoelasticRows {
             }
         }
         ViscoelasticJacobian {
+            flow_upwind: self.flow_upwind,
             entries,
             branches: self.branches.clone(),
             min_rows: self.passes.min_rows(self.nx),
@@ -1040,6 +1070,8 @@ pub struct ViscoelasticJacobian {
     min_rows: usize,
     /// The layer's entry fractions (empty: none).
     entries: Vec<f64>,
+    /// The flow's upwind share ([`flow_upwind_share`]).
+    flow_upwind: f64,
     /// The branches, for the entry cells.
     branches: Vec<BranchStep>,
 }
@@ -1130,7 +1162,7 @@ impl ViscoelasticJacobian {
                         };
                         orow[i] = diag[i] * drow[i] + upstream + entering
                             - self.upwind * upstream_forcing
-                            - FLOW_UPWIND * upstream_flow;
+                            - self.flow_upwind * upstream_flow;
                         if branched {
                             // `diag` holds the upstream exit's share, which
                             // `entering` already carries here; and the downstream
@@ -1213,7 +1245,7 @@ impl ViscoelasticJacobian {
                             0.0
                         };
                         let upwind = if theta > 0.0 { 0.0 } else { self.upwind };
-                        let flow_upwind = if theta > 0.0 { 0.0 } else { FLOW_UPWIND };
+                        let flow_upwind = if theta > 0.0 { 0.0 } else { self.flow_upwind };
                         y[i] = (r[k] - upstream - entering
                             + upwind * upstream_forcing
                             + flow_upwind * upstream_flow
@@ -1498,11 +1530,13 @@ mod tests {
     fn maxwell_row_sweep_matches_the_explicit_sum_and_correction() {
         // Explicit double loop over eq. 8 (exact integral) and the upwind correction,
         // as in the module docs.
-        let op = ViscoelasticRows::new(sigmoid(0.5, 0.002, Integration::Exact), 5, 2, 0.1, 0.05);
+        let op = ViscoelasticRows::new(sigmoid(0.5, 0.002, Integration::Exact), 5, 2, 0.1, 0.01);
         let p: Vec<f64> = (0..10).map(|k| 0.001 * ((k * 7) % 5) as f64).collect();
         let mut w = vec![0.0; 10];
         op.row_sweep(&p, &mut w);
-        let k = 0.1 / 0.05;
+        let k = 0.1 / 0.01;
+        // The correction's share at 10 cells of flow per cell of the spring.
+        let share = (1.0 / 16.0) * (k - 2.0) / (k + 2.0);
         for r in 0..2 {
             for i in 0..5 {
                 let mut s = 0.0;
@@ -1510,15 +1544,15 @@ mod tests {
                     s += op.creep(p[r * 5 + j]).0;
                 }
                 let own = op.creep(p[r * 5 + i]).0;
-                // The upwind correction of the module docs, 1/16 of the difference
-                // from the upstream cell (none beyond the window).
+                // The upwind correction of the module docs: its share of the
+                // difference from the upstream cell (none beyond the window).
                 let upstream = if i + 1 < 5 {
                     op.creep(p[r * 5 + i + 1]).0
                 } else {
                     0.0
                 };
                 let e = op.layer.law_at(p[r * 5 + i]).integral
-                    + k * (s + own / 2.0 + (own - upstream) / 16.0);
+                    + k * (s + own / 2.0 + share * (own - upstream));
                 assert!((w[r * 5 + i] - e).abs() < 1e-15);
             }
         }
