@@ -106,6 +106,19 @@ fn load_balance_holds_to_round_off() {
     }
 }
 
+/// The largest difference of the pressure from its mirror image in x.
+fn asymmetry(s: &Solution) -> f64 {
+    let g = s.grid;
+    let mut asym = 0.0f64;
+    for j in 0..g.ny() {
+        for i in 0..g.nx() {
+            let mirror = g.nx() - 1 - i;
+            asym = asym.max((s.pressure[g.index(i, j)] - s.pressure[g.index(mirror, j)]).abs());
+        }
+    }
+    asym
+}
+
 /// A Zener layer (glassy 0.01 in series with a Kelvin–Voigt branch 0.01, tau = 1)
 /// at V = 1e7: a cell is 1e-10 of the branch's creep length, so the layer is its
 /// glassy spring bed; the pressure is symmetric and the friction, the branch's
@@ -126,15 +139,7 @@ fn a_nearly_frozen_branch_leaves_the_glassy_spring_bed() {
     });
     case.loading.velocity = Some(1e7);
     let s = solve_to(&case, 1e-12);
-    let g = s.grid;
-    let pmax = s.summary().max_pressure;
-    let mut asym = 0.0f64;
-    for j in 0..g.ny() {
-        for i in 0..g.nx() {
-            let mirror = g.nx() - 1 - i;
-            asym = asym.max((s.pressure[g.index(i, j)] - s.pressure[g.index(mirror, j)]).abs());
-        }
-    }
+    let (asym, pmax) = (asymmetry(&s), s.summary().max_pressure);
     let m = s.summary();
     eprintln!(
         "asymmetry {:.1e}, mu {:.3e}, dissipation {:.3e}",
@@ -163,16 +168,7 @@ fn infinite_velocity_gives_a_symmetric_pressure_and_no_friction() {
                 [0.0, 0.0],
             );
             let s = solve_to(&case, 1e-11);
-            let g = s.grid;
-            let pmax = s.summary().max_pressure;
-            let mut asym = 0.0f64;
-            for j in 0..g.ny() {
-                for i in 0..g.nx() {
-                    let mirror = g.nx() - 1 - i;
-                    asym = asym
-                        .max((s.pressure[g.index(i, j)] - s.pressure[g.index(mirror, j)]).abs());
-                }
-            }
+            let (asym, pmax) = (asymmetry(&s), s.summary().max_pressure);
             let mu = s.summary().friction_coefficient;
             eprintln!(
                 "V = {velocity:e}, {law:?}: asymmetry {:.1e}, mu {mu:.1e}",
