@@ -100,9 +100,9 @@
 //! response) nothing needs damping and the correction would only bias the lag (it
 //! doubled the friction's error on a rigid base at `V T = 10 h`), so `kappa =
 //! (r - 2) / (r + 2) / 16`: 0 up to r = 2, 1/16 in the slow limit and for a flow
-//! without a spring, the roots within 1/3 throughout. Its leading edges are located as the
-//! branches' are (above): in an entry cell the creep rate is integrated from the
-//! edge, linear through the downstream neighbour's
+//! without a spring, the roots within 1/3 throughout. Its leading edges are
+//! located as the branches' are (above): in an entry cell the creep rate is
+//! integrated from the edge, linear through the downstream neighbour's
 //! (`theta q_i - theta^2 (q_{i-1} - q_i) / 2` at the centre, without the
 //! correction), and the cell passes downstream the rate integrated over its loaded
 //! part, with the weights of its mean pressure ([`ContactEdge::mean_weights`]).
@@ -121,8 +121,9 @@
 //! pressure on the parts that do not store energy: `p dw_v/dt` for the flow and
 //! `(p - F_k^{-1}(w_k)) dw_k/dt` for branch k. Over a cell the flow dissipates
 //! `p_i (w_v,out - w_v,in)`, in an entry cell `int p dw_v` over its loaded part with
-//! the pressure and the creep rate linear as above. Downstream of the window a branch relaxes at zero
-//! pressure and dissipates the energy it still holds, so summed along a whole row
+//! the pressure and the creep rate linear as above. Downstream of the window a
+//! branch relaxes at zero pressure and dissipates the energy it still holds, so
+//! summed along a whole row
 //! the stored energies `Phi_k(w) = int_0^w F_k^{-1}` cancel and the branch
 //! dissipates exactly `int p dw_k` along the row. That integral is taken exactly
 //! for the pressure and forcing continuous and linear between cell centres (two
