@@ -442,6 +442,19 @@ fn entry_flow_weights(theta: f64, has_neighbour: bool) -> (f64, f64) {
     .mean_weights()
 }
 
+/// The flow at an entry cell's centre, per unit of its own creep rate and of its
+/// downstream neighbour's: the rate integrated from the edge over `theta` cells,
+/// linear through the two centres, `theta q_i - theta^2 (q_{i-1} - q_i) / 2`
+/// (constant without a neighbour).
+fn entry_centre_weights(theta: f64, has_neighbour: bool) -> (f64, f64) {
+    if has_neighbour {
+        let half_square = 0.5 * theta * theta;
+        (theta + half_square, -half_square)
+    } else {
+        (theta, 0.0)
+    }
+}
+
 /// `(1 - e^(-y) (1 + y)) / y`: a branch started at zero and driven over `y` creep
 /// lengths by a forcing that rises by 1 per creep length, less the same forcing's
 /// final value times `1 - e^(-y)`, changes sign: this is what it lags behind (`y/2`
@@ -752,10 +765,10 @@ impl ViscoelasticRows {
             // docs: from a located edge, the creep rate linear through the
             // downstream neighbour's).
             let (flow, passed) = if theta > 0.0 {
-                // Without a downstream neighbour (the window's end) the rate is
-                // constant from the edge.
                 let next_creep = if i > 0 { here.1 .0 } else { q };
                 let (a, b) = entry_flow_weights(theta, i > 0);
+                // `entry_centre_weights` (the Jacobian's) applied, written so
+                // that the recorded results keep their last bits.
                 let centre = theta * q - 0.5 * theta * theta * (next_creep - q);
                 (upstream + centre, a * q + b * next_creep)
             } else {
@@ -954,11 +967,7 @@ impl ViscoelasticRows {
             // the centre, `b q_{k-1}` of what it passes on reaching the downstream
             // neighbour's own centre value.
             let neighbour = k % self.nx > 0;
-            let flow_own = if neighbour {
-                theta + 0.5 * theta * theta
-            } else {
-                theta
-            };
+            let flow_own = entry_centre_weights(theta, neighbour).0;
             diagonal[k] = (self.glassy_scale + own) * df + flow_own * self.flow_per_cell * dq;
             if neighbour {
                 diagonal[k - 1] +=
@@ -1159,7 +1168,8 @@ impl ViscoelasticJacobian {
                         orow[i] = diag[i] * drow[i] + upstream + carried + across * next;
                         if i > 0 {
                             // The flow's reach to the downstream neighbour.
-                            orow[i] -= 0.5 * theta * theta * slope[i - 1] * drow[i - 1];
+                            let reach = entry_centre_weights(theta, true).1;
+                            orow[i] += reach * slope[i - 1] * drow[i - 1];
                         }
                     } else {
                         let before_entry = i > 0 && self.entry(base + i - 1) > 0.0;
