@@ -214,11 +214,27 @@ impl Solution {
         }
     }
 
+    /// The pressure at each cell's centre: [`Solution::pressure`] but behind the
+    /// leading edges where the pressure rises over part of the cell, where it is
+    /// [`crate::layer::ContactEdge::centre_share`] of the centre value.
+    pub fn centre_pressure(&self) -> Cow<'_, [f64]> {
+        if self.contact_edges.iter().all(|e| e.rise <= 0.0) {
+            Cow::Borrowed(&self.pressure)
+        } else {
+            let mut centre = self.pressure.clone();
+            for e in &self.contact_edges {
+                centre[e.cell] *= e.centre_share();
+            }
+            Cow::Owned(centre)
+        }
+    }
+
     /// The scalar results.
     pub fn summary(&self) -> Summary {
         let g = &self.grid;
         let area = g.cell_measure();
         let mean = self.mean_pressure();
+        let centre = self.centre_pressure();
         let (mut pmax, mut kmax) = (0.0, 0);
         let (mut xmin, mut xmax, mut ymin, mut ymax) = (
             f64::INFINITY,
@@ -231,8 +247,8 @@ impl Solution {
             for i in 0..g.nx {
                 let k = g.index(i, j);
                 let p = self.pressure[k];
-                if p > pmax {
-                    pmax = p;
+                if centre[k] > pmax {
+                    pmax = centre[k];
                     kmax = k;
                 }
                 if p > 0.0 {

@@ -519,48 +519,54 @@ fn table_layer_on_a_rigid_base_matches_the_row_ode() {
 /// and D are within 1 % of the oracle and the energy balance within 2e-3; the
 /// peak, a centre value next to the jump, is still up to 12 % high, and the report
 /// says that it is not resolved.
+/// The slow limit: creep lengths V T from 0.3 to 0.01 of the cell (64 x 96), the
+/// load scaled so that the contact stays the half disc b0 = 0.04. The pressure
+/// rises over V T behind the leading edge, inside the entry cell, which the layer
+/// models (`ContactEdge::rise`). Before, the entry cell's pressure jumped there and
+/// the centre values next to it overshot the peak by 5.7 %, 12.2 % and 5.4 % at
+/// V T = 0.3 h, h / 10 and h / 30 (15.8 % with the sigmoid law at h / 10), which
+/// the report flagged as unresolved. Now the peak, mu and D are within 1 % of the
+/// per-row closed form with no warning, and the energy balance within 1e-3. The
+/// sigmoid law at V T = h / 5 has the edge of its peak row near a cell's centre,
+/// where the rise is shortened (`rise_behind`).
 #[test]
 fn a_creep_length_far_below_the_cell_matches_the_oracle() {
     let b0: f64 = 0.04;
-    for creep_length in [1e-4, 1e-5] {
+    let c = sigmoid(COMPLIANCE, 0.5, 0.01);
+    let cell = 2.0 * WINDOW_HALF_WIDTH[0] / GRIDS[1][0] as f64;
+    let cases = [
+        (0.3, ComplianceLaw::Linear),
+        (0.1, ComplianceLaw::Linear),
+        (0.01, ComplianceLaw::Linear),
+        (0.2, SIGMOID),
+    ];
+    for (share, law) in cases {
+        let creep_length = share * cell;
         let load = 4.0 / 3.0 * creep_length * b0.powi(3) / (2.0 * RADIUS * COMPLIANCE);
         let oracle = RigidBase {
             radius: RADIUS,
             creep_length,
             load,
         };
-        let reference = oracle.solve(&Law::Linear {
-            compliance: COMPLIANCE,
+        let reference = oracle.solve(&match law {
+            ComplianceLaw::Linear => Law::Linear {
+                compliance: COMPLIANCE,
+            },
+            _ => Law::Exact(&c),
         });
-        let mut case = rigid_base_case(layer(ComplianceLaw::Linear, Integration::Exact), GRIDS[1]);
+        let mut case = rigid_base_case(layer(law, Integration::Exact), GRIDS[1]);
         case.loading.normal_load = load;
         case.loading.velocity = Some(creep_length / RELAXATION_TIME);
-        let name = format!("linear, L = {creep_length:e}");
+        let name = format!("V T = {share} h");
         let errors = solve_and_compare(&name, &case, &reference);
-        // The peak is a centre value next to the jump: measured +12.2 % (L = h / 10)
-        // and +0.4 % (h / 100), which the report flags as unresolved.
-        Errors {
-            max_pressure: 0.0,
-            ..errors
-        }
-        .assert_within(0.01, &name);
-        assert!(
-            errors.max_pressure.abs() < 0.13,
-            "{name}: {:e}",
-            errors.max_pressure
-        );
+        errors.assert_within(0.01, &name);
         let solution = thirdbody::solve(&case, &SolverParams::default()).unwrap();
         let warnings = thirdbody::report::model_warnings(&case, &solution);
-        assert!(
-            warnings
-                .iter()
-                .any(|w| w.contains("max_pressure follows the cell")),
-            "{name}: {warnings:?}"
-        );
+        assert!(warnings.is_empty(), "{name}: {warnings:?}");
         let s = solution.summary();
         let balance = s.dissipation_friction_coefficient / s.friction_coefficient - 1.0;
         eprintln!("{name}: energy balance {balance:+.2e}");
-        assert!(balance.abs() < 2e-3, "{name}: energy balance {balance:e}");
+        assert!(balance.abs() < 1e-3, "{name}: energy balance {balance:e}");
     }
 }
 

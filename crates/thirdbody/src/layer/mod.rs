@@ -101,10 +101,14 @@ pub trait LayerResponse: std::fmt::Debug + Send + Sync {
 
 /// A contact's edge along x inside a cell (`cell`, a flat index) of a row: the
 /// pressure is zero beyond the edge, `theta` cells from the cell's centre
-/// (`0 < theta <= 1`), and on the other side linear through the cell's centre value
-/// and its loaded neighbour's (`neighbour`, absent at the window's edge). Where a
-/// layer cannot deform instantly the pressure jumps at a leading edge; at every
-/// edge a cell's centre value is not its mean.
+/// (`0 < theta <= 1`), and on the other side follows the line `L` through the cell's
+/// centre value and its loaded neighbour's (`neighbour`, absent at the window's
+/// edge). Where a layer cannot deform instantly the pressure jumps at a leading edge
+/// (`rise = 0`), or rises over `rise` cells: `p(s) = L(s) (1 - e^(-s / rise))`, s in
+/// cells from the edge (a glassy spring in series with a flow whose creep length is
+/// below the cell); the cell's centre value is then `L`'s at the centre, and the
+/// pressure there [`ContactEdge::centre_share`] of it. At every edge a cell's centre
+/// value is not its mean.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactEdge {
     /// The cell the edge cuts.
@@ -113,22 +117,60 @@ pub struct ContactEdge {
     pub neighbour: Option<usize>,
     /// Distance from the edge to the cell's centre, in cells.
     pub theta: f64,
+    /// Length, in cells, over which the pressure rises from zero behind the edge (0:
+    /// it jumps).
+    pub rise: f64,
 }
 
 impl ContactEdge {
     /// `(a, b)` with the load the cell carries, per unit area of a cell, `a p_cell +
-    /// b p_neighbour`: the integral of the linear pressure from the edge to the
-    /// cell's face on the neighbour's side, `(theta + 1/2) p_c + (1/4 - theta^2)
-    /// (p_n - p_c) / 2`. For `theta = 1/2` (the edge on the cell's other face) it is
-    /// `(1, 0)`.
+    /// b p_neighbour`: the integral of the pressure from the edge to the cell's face
+    /// on the neighbour's side. Without a rise, of the line alone: `(theta + 1/2) p_c
+    /// + (1/4 - theta^2) (p_n - p_c) / 2`; for `theta = 1/2` (the edge on the cell's
+    /// other face) it is `(1, 0)`. A rise takes [`ContactEdge::rise_deficit`] from it.
     pub fn mean_weights(&self) -> (f64, f64) {
         let length = self.theta + 0.5;
-        match self.neighbour {
+        let (a, b) = match self.neighbour {
             Some(_) => {
                 let slope = 0.5 * (0.25 - self.theta * self.theta);
                 (length - slope, slope)
             }
             None => (length, 0.0),
+        };
+        if self.rise > 0.0 {
+            let (da, db) = self.rise_deficit(length);
+            (a - da, b - db)
+        } else {
+            (a, b)
+        }
+    }
+
+    /// `(a, b)` with what the rise takes from the line over the first `x` cells
+    /// behind the edge, `int_0^x L(s) e^(-s / l) ds = a p_cell + b p_neighbour`
+    /// (`l` the rise): with `L(s) = (p_c - theta d) + d s`, `d = p_n - p_c`, and the
+    /// moments `E = int_0^x e^(-s/l) ds = l (1 - e^(-x/l))`, `M = int_0^x s e^(-s/l)
+    /// ds = l E - l x e^(-x/l)`, it is `(p_c - theta d) E + d M`. Zero without a rise.
+    pub fn rise_deficit(&self, x: f64) -> (f64, f64) {
+        if self.rise <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let l = self.rise;
+        let decay = (-x / l).exp();
+        let e = -l * (-x / l).exp_m1();
+        let m = l * e - l * x * decay;
+        match self.neighbour {
+            Some(_) => (e * (1.0 + self.theta) - m, m - self.theta * e),
+            None => (e, 0.0),
+        }
+    }
+
+    /// The pressure at the cell's centre per unit of its centre value: `1 -
+    /// e^(-theta / rise)` (1 without a rise).
+    pub fn centre_share(&self) -> f64 {
+        if self.rise > 0.0 {
+            -(-self.theta / self.rise).exp_m1()
+        } else {
+            1.0
         }
     }
 }
@@ -313,6 +355,71 @@ pub(crate) mod tests {
     /// The paper's sigmoid layer (C0 = 0.02, T = 1) for the layer modules' tests.
     pub(crate) fn sigmoid(delta: f64, p0: f64, integration: Integration) -> Layer {
         Layer::maxwell(0.02, 1.0, ComplianceLaw::Sigmoid { delta, p0 }, integration)
+    }
+
+    /// Composite Simpson quadrature of f on [a, b] with n (even) panels: an
+    /// integrator independent of the closed forms it checks.
+    pub(crate) fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+        let h = (b - a) / n as f64;
+        let inner: f64 = (1..n)
+            .map(|k| f(a + k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 })
+            .sum();
+        (f(a) + f(b) + inner) * h / 3.0
+    }
+
+    #[test]
+    fn a_cells_mean_pressure_is_the_integral_of_its_rising_profile() {
+        // The profile behind an edge theta cells from the centre: the line through
+        // the centre value and the neighbour's (one cell downstream), times
+        // 1 - e^(-s / rise), integrated over the loaded part by quadrature.
+        let (centre, next) = (0.7, 1.3);
+        for neighbour in [Some(0), None] {
+            for theta in [1e-3, 0.05, 0.3, 0.5, 1.0] {
+                for rise in [0.0, 1e-3, 0.04, 0.3, 0.9] {
+                    let edge = ContactEdge {
+                        cell: 1,
+                        neighbour,
+                        theta,
+                        rise,
+                    };
+                    let slope = if neighbour.is_some() {
+                        next - centre
+                    } else {
+                        0.0
+                    };
+                    let profile = |s: f64| {
+                        let line = centre + (s - theta) * slope;
+                        if rise > 0.0 {
+                            line * (1.0 - (-s / rise).exp())
+                        } else {
+                            line
+                        }
+                    };
+                    let (a, b) = edge.mean_weights();
+                    let mean = a * centre + b * next;
+                    // Panels fine against the rise (the integrand's scale) over
+                    // its first 40 lengths.
+                    let x = theta + 0.5;
+                    let split = if rise > 0.0 { (40.0 * rise).min(x) } else { x };
+                    let quadrature = simpson(profile, 0.0, split, 20_000)
+                        + if split < x {
+                            simpson(profile, split, x, 2_000)
+                        } else {
+                            0.0
+                        };
+                    assert!(
+                        (mean - quadrature).abs() < 1e-10,
+                        "theta {theta}, rise {rise}, {neighbour:?}: {mean} {quadrature}"
+                    );
+                    let share = if rise > 0.0 {
+                        profile(theta) / centre
+                    } else {
+                        1.0
+                    };
+                    assert!((edge.centre_share() - share).abs() < 1e-14);
+                }
+            }
+        }
     }
 
     #[test]
