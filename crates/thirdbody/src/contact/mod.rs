@@ -735,9 +735,8 @@ pub fn solve_problem(
                 let placed = problem.layer.replace(layer);
                 let before = p.clone();
                 // Its iterations continue the count the summary reports.
-                let offset = r.iterations;
-                let mut counted = |progress: Progress| {
-                    observer(match progress {
+                let counted = |offset: usize| {
+                    move |progress: Progress| match progress {
                         Progress::Iteration {
                             iteration,
                             residual,
@@ -746,9 +745,38 @@ pub fn solve_problem(
                             residual,
                         },
                         other => other,
-                    })
+                    }
                 };
-                let again = match newton::semismooth_newton(problem, &mut p, params, &mut counted) {
+                let offset = r.iterations;
+                let relabel = counted(offset);
+                let first = newton::semismooth_newton(problem, &mut p, params, &mut |progress| {
+                    observer(relabel(progress))
+                });
+                // A relocated solve that stalls is tried once more from the same
+                // start with the softer contact-set rule: the first relocation starts
+                // from the faces' solution, whose leading edges ring in slow
+                // sliding, and a sigmoid layer at V' = 1e-4 (paper Fig. 8, p0' =
+                // 0.0025) stalled there near a residual of 2e-5 and kept the ringing
+                // solution (energy balance 3 %); the retry converges.
+                let again = match first {
+                    Err(Error::NoConvergence { iterations, .. }) => {
+                        p = before.clone();
+                        let relabel = counted(offset + iterations);
+                        newton::semismooth_newton_scaled(
+                            problem,
+                            &mut p,
+                            params,
+                            &mut |progress| observer(relabel(progress)),
+                            newton::SOFTER_ACTIVE_SET,
+                        )
+                        .map(|mut again| {
+                            again.iterations += iterations;
+                            again
+                        })
+                    }
+                    other => other,
+                };
+                let again = match again {
                     Ok(again) => again,
                     Err(Error::Interrupted) => return Err(Error::Interrupted),
                     Err(_) => {
@@ -977,6 +1005,37 @@ mod tests {
         })
         .unwrap();
         assert!(!s.contact_edges.is_empty(), "no edges were located");
+        assert_eq!(numbers, (1..=s.info.iterations).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_stalled_relocated_solve_is_tried_again_with_the_softer_rule() {
+        // Paper Fig. 8's sigmoid layer (p0' = 0.0025) at V' = 1e-4 on 128^2: the
+        // first relocated solve starts from the faces' solution, whose leading
+        // edges ring, and stalls near a residual of 2e-5; alone, it left that
+        // solution standing (no edges, the dissipated power 3.3 % above the
+        // friction, the peak 1.8 times the located one). The softer retry converges
+        // with the edges located; the progress events still count on.
+        let text = "[slider]\nshape = \"sphere\"\nradius = 1.0\n\
+                    [substrate]\nyoung = 1.0\npoisson = 0.3\n\
+                    [layer]\ncompliance = 0.02\nrelaxation_time = 1.0\n\
+                    law = \"sigmoid\"\ndelta = 0.5\np0 = 0.0025\n\
+                    [loading]\nnormal_load = 25e-6\nvelocity = 1e-4\n\
+                    [grid]\ncells = [128, 128]\n";
+        let case = crate::test_cases::parse(text);
+        let mut numbers = Vec::new();
+        let s = solve_observed(&case, &SolverParams::default(), &mut |p| {
+            match p {
+                Progress::Window { .. } => numbers.clear(),
+                Progress::Iteration { iteration, .. } => numbers.push(iteration),
+            }
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        assert!(!s.contact_edges.is_empty(), "no edges were located");
+        let m = s.summary();
+        let balance = m.dissipation_friction_coefficient / m.friction_coefficient - 1.0;
+        assert!(balance.abs() < 1e-3, "energy balance {balance:e}");
         assert_eq!(numbers, (1..=s.info.iterations).collect::<Vec<_>>());
     }
 }
