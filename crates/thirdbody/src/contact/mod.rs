@@ -989,14 +989,11 @@ mod tests {
         assert_eq!(windows, 1);
     }
 
-    #[test]
-    fn iterations_count_on_through_the_solves_with_located_edges() {
-        // The paper's Maxwell layer places its contacts' edges and solves again:
-        // the progress events number the iterations of the last window as its
-        // summary counts them, one after another.
-        let case = crate::test_cases::parse(crate::test_cases::MAXWELL_LAYER);
+    /// Solves `case` with the default parameters, and the iteration numbers its
+    /// progress events gave in the last window.
+    fn solve_numbering_iterations(case: &crate::Case) -> (Solution, Vec<usize>) {
         let mut numbers = Vec::new();
-        let s = solve_observed(&case, &SolverParams::default(), &mut |p| {
+        let s = solve_observed(case, &SolverParams::default(), &mut |p| {
             match p {
                 Progress::Window { .. } => numbers.clear(),
                 Progress::Iteration { iteration, .. } => numbers.push(iteration),
@@ -1004,6 +1001,16 @@ mod tests {
             ControlFlow::Continue(())
         })
         .unwrap();
+        (s, numbers)
+    }
+
+    #[test]
+    fn iterations_count_on_through_the_solves_with_located_edges() {
+        // The paper's Maxwell layer places its contacts' edges and solves again:
+        // the progress events number the iterations of the last window as its
+        // summary counts them, one after another.
+        let case = crate::test_cases::parse(crate::test_cases::MAXWELL_LAYER);
+        let (s, numbers) = solve_numbering_iterations(&case);
         assert!(!s.contact_edges.is_empty(), "no edges were located");
         assert_eq!(numbers, (1..=s.info.iterations).collect::<Vec<_>>());
     }
@@ -1023,15 +1030,7 @@ mod tests {
                     [loading]\nnormal_load = 25e-6\nvelocity = 1e-4\n\
                     [grid]\ncells = [128, 128]\n";
         let case = crate::test_cases::parse(text);
-        let mut numbers = Vec::new();
-        let s = solve_observed(&case, &SolverParams::default(), &mut |p| {
-            match p {
-                Progress::Window { .. } => numbers.clear(),
-                Progress::Iteration { iteration, .. } => numbers.push(iteration),
-            }
-            ControlFlow::Continue(())
-        })
-        .unwrap();
+        let (s, numbers) = solve_numbering_iterations(&case);
         assert!(!s.contact_edges.is_empty(), "no edges were located");
         let m = s.summary();
         let balance = m.dissipation_friction_coefficient / m.friction_coefficient - 1.0;
