@@ -72,7 +72,9 @@ pub fn fig3(
     let s = &solutions.solve_each(std::slice::from_ref(&case))?[0];
     let g = &s.grid;
     let c = s.compliance.clone().unwrap_or_default();
-    let p = &s.pressure;
+    // The pressure at the cells' centres.
+    let centre = s.centre_pressure();
+    let p: &[f64] = &centre;
     files.plot("fig03a_pressure", |path| {
         plot::field_map(
             path,

@@ -85,14 +85,15 @@ where
         .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
 }
 
-/// Pressure along x on the cell row nearest y = 0.
+/// Pressure along x at the centres of the cell row nearest y = 0 (behind a rising
+/// leading edge, the pressure at the entry cell's centre).
 pub fn pressure_row(s: &Solution, label: String, dashed: bool) -> Series {
     let g = &s.grid;
     let j = row_nearest_y0(g);
     Series {
         label,
         x: (0..g.nx()).map(|i| g.x(i)).collect(),
-        y: s.pressure[j * g.nx()..(j + 1) * g.nx()].to_vec(),
+        y: s.centre_pressure()[j * g.nx()..(j + 1) * g.nx()].to_vec(),
         dashed,
     }
 }
