@@ -1522,7 +1522,8 @@ impl LayerResponse for ViscoelasticRows {
                     cell,
                     neighbour: (i > 0).then(|| cell - 1),
                     theta,
-                    rise: rise_behind(self.rise, theta),
+                    // Set below, once the edge's place is settled.
+                    rise: 0.0,
                 });
             } else if i > 0
                 && i + 1 < nx
@@ -1568,6 +1569,7 @@ impl LayerResponse for ViscoelasticRows {
             })
             .collect();
         let (mut edges, settled) = next_edges(&self.edge_list, &self.edge_history, edges, p, nx);
+        // The rise behind each leading edge where it now lies.
         for e in edges.iter_mut().filter(|e| leading(e)) {
             e.rise = rise_behind(self.rise, e.theta);
         }
