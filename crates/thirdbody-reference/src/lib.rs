@@ -331,6 +331,13 @@ fn newton_on_set(
         if step > 0 && settled && worst <= 1e-9 && load_error.abs() <= 1e-12 * load {
             return Ok(());
         }
+        // A set whose solution has a negative pressure is left by the caller
+        // anyway; the layer's law is not smooth below zero pressure (its slope is
+        // cut there), where Newton can cycle without converging: hand the set back
+        // once the iterate settles on a negative pressure.
+        if step >= 20 && idx.iter().any(|&k| p[k] < 0.0) {
+            return Ok(());
+        }
         previous = worst;
         let layer_jac = layer.map(|l| l.jacobian(p, &idx));
         let jac = DMatrix::<f64>::from_fn(m + 1, m + 1, |r, c| match (r < m, c < m) {

@@ -158,13 +158,6 @@ pub fn model_warnings(case: &Case, solution: &Solution) -> Vec<String> {
 /// resolve the contact's edges to first order in the cell, so the allowed
 /// difference is the larger of [`MAX_ENERGY_IMBALANCE`] and
 /// [`ENERGY_IMBALANCE_PER_CELL`] `h / a`, a the contact's half-length along x.
-/// A layer's flow whose creep length `V T` is below this many cells leaves the
-/// pressure's rise behind the leading edge inside the entry cell. The layer models
-/// that rise where the flow is in series with a glassy spring alone; with retarded
-/// branches as well it does not, and the reported peak is not resolved
-/// ([`model_warnings`] says so).
-pub const FLOW_BOUNDARY_LAYER_CELLS: f64 = 1.0;
-
 /// Cells from the pressure's maximum within which an unloaded cell means the peak is
 /// not resolved.
 pub const EDGE_PEAK_CELLS: usize = 3;
@@ -174,26 +167,12 @@ pub const EDGE_PEAK_CELLS: usize = 3;
 /// narrower than the grid resolves (under a coating far stiffer and thinner than
 /// the contact, or behind the glassy leading edge of a viscoelastic body), whose
 /// value then follows the cell size. A layer places its contacts' edges inside
-/// their cells and its leading-edge jumps are resolved that way, so it is left out,
-/// but for a flow whose creep length `V T` is below [`FLOW_BOUNDARY_LAYER_CELLS`]
-/// cells in series with a glassy spring and retarded branches: the pressure then
-/// rises to its peak within that length behind the leading edge, inside the entry
-/// cell, a rise the layer models only without the branches (a glassy spring and
-/// the flow: the paper's Maxwell layer), and the centre values next to it
-/// overshoot the peak (on a rigid base, without the modelled rise, by 1 % at `V T
-/// = h`, 6 % at 0.3 h, 12 % at h / 10; docs/validation.md).
+/// their cells and its leading-edge jumps are resolved that way, and where its flow
+/// creeps less than a cell the pressure's rise behind the leading edge is modelled
+/// inside the entry cell ([`crate::layer::Rise`]), so it is left out.
 fn edge_peak_warning(case: &Case, solution: &Solution) -> Option<String> {
-    if let Some(layer) = &case.layer {
-        let speed = case.loading.velocity.unwrap_or(f64::INFINITY);
-        let form = layer.rheology.creep_form();
-        let unresolved = form.glassy > 0.0
-            && !form.branches.is_empty()
-            && form
-                .flow
-                .is_some_and(|f| speed * f.time < FLOW_BOUNDARY_LAYER_CELLS * solution.grid.cell());
-        if !unresolved {
-            return None;
-        }
+    if case.layer.is_some() {
+        return None;
     }
     let grid = &solution.grid;
     let (nx, ny) = (grid.nx(), grid.ny());
@@ -219,8 +198,7 @@ fn edge_peak_warning(case: &Case, solution: &Solution) -> Option<String> {
         format!(
             "the pressure peaks within {r} cells of the contact's edge ({at}): the \
              peak is narrower than the cells resolve (e.g. an edge concentration under a \
-             stiff thin coating, a glassy leading edge, a layer that flows less than a \
-             cell in its relaxation time, or a contact spot a few cells \
+             stiff thin coating, a glassy leading edge, or a contact spot a few cells \
              wide), so max_pressure follows the cell \
              size; refine the grid to converge it (the load, the contact's extent and the \
              friction converge sooner)"

@@ -218,7 +218,7 @@ impl Solution {
     /// leading edges where the pressure rises over part of the cell, where it is
     /// [`crate::layer::ContactEdge::centre_share`] of the centre value.
     pub fn centre_pressure(&self) -> Cow<'_, [f64]> {
-        if self.contact_edges.iter().all(|e| e.rise <= 0.0) {
+        if self.contact_edges.iter().all(|e| e.rise.is_none()) {
             Cow::Borrowed(&self.pressure)
         } else {
             let mut centre = self.pressure.clone();

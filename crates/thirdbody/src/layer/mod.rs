@@ -104,11 +104,11 @@ pub trait LayerResponse: std::fmt::Debug + Send + Sync {
 /// (`0 < theta <= 1`), and on the other side follows the line `L` through the cell's
 /// centre value and its loaded neighbour's (`neighbour`, absent at the window's
 /// edge). Where a layer cannot deform instantly the pressure jumps at a leading edge
-/// (`rise = 0`), or rises over `rise` cells: `p(s) = L(s) (1 - e^(-s / rise))`, s in
-/// cells from the edge (a glassy spring in series with a flow whose creep length is
-/// below the cell); the cell's centre value is then `L`'s at the centre, and the
-/// pressure there [`ContactEdge::centre_share`] of it. At every edge a cell's centre
-/// value is not its mean.
+/// (no [`Rise`]), or rises behind it: `p(s) = L(s) rho(s)`, s in cells from the edge
+/// (springs in series with a flow whose creep length is below the cell); the cell's
+/// centre value is then `L`'s at the centre, and the pressure there
+/// [`ContactEdge::centre_share`] of it. At every edge a cell's centre value is not
+/// its mean.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactEdge {
     /// The cell the edge cuts.
@@ -117,9 +117,71 @@ pub struct ContactEdge {
     pub neighbour: Option<usize>,
     /// Distance from the edge to the cell's centre, in cells.
     pub theta: f64,
-    /// Length, in cells, over which the pressure rises from zero behind the edge (0:
-    /// it jumps).
-    pub rise: f64,
+    /// How the pressure rises behind the edge ([`Rise::NONE`]: it jumps).
+    pub rise: Rise,
+}
+
+/// Most exponentials a [`Rise`] keeps.
+pub const RISE_TERMS: usize = 4;
+
+/// The pressure's rise behind a leading edge per unit of its line, `rho(s) = 1 -
+/// sum_m a_m e^(-s / l_m)`, s in cells from the edge: a glassy spring in series
+/// with a flow rises with one exponential (`a = 1`, `l = C_g / (flow per cell)`),
+/// each retarded branch adds one (docs of the viscoelastic layer). Terms with a zero
+/// amplitude are unused; all zero: no rise, the pressure jumps at the edge.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Rise {
+    /// `a_m`, each > 0 where used.
+    pub amplitudes: [f64; RISE_TERMS],
+    /// `l_m` in cells, each > 0 where used.
+    pub lengths: [f64; RISE_TERMS],
+}
+
+impl Rise {
+    /// No rise: the pressure jumps at the edge.
+    pub const NONE: Rise = Rise {
+        amplitudes: [0.0; RISE_TERMS],
+        lengths: [0.0; RISE_TERMS],
+    };
+
+    /// One exponential over `length` cells (none for `length <= 0`).
+    pub fn single(length: f64) -> Rise {
+        let mut r = Rise::NONE;
+        if length > 0.0 {
+            r.amplitudes[0] = 1.0;
+            r.lengths[0] = length;
+        }
+        r
+    }
+
+    /// The terms `(a_m, l_m)` in use.
+    pub fn terms(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.amplitudes
+            .iter()
+            .zip(&self.lengths)
+            .map(|(&a, &l)| (a, l))
+            .filter(|&(a, l)| a != 0.0 && l > 0.0)
+    }
+
+    /// Whether there is no rise (the pressure jumps).
+    pub fn is_none(&self) -> bool {
+        self.terms().next().is_none()
+    }
+
+    /// `rho(s)`: `(1 - sum a_m) + sum a_m (1 - e^(-s / l_m))`, 1 without a rise.
+    pub fn share(&self, s: f64) -> f64 {
+        let rest: f64 = self.terms().map(|(a, _)| a).sum();
+        self.terms()
+            .fold(1.0 - rest, |sum, (a, l)| sum - a * (-s / l).exp_m1())
+    }
+
+    /// The same rise with every length at most `longest`.
+    pub fn shortened(mut self, longest: f64) -> Rise {
+        for l in &mut self.lengths {
+            *l = l.min(longest);
+        }
+        self
+    }
 }
 
 impl ContactEdge {
@@ -137,41 +199,40 @@ impl ContactEdge {
             }
             None => (length, 0.0),
         };
-        if self.rise > 0.0 {
+        if self.rise.is_none() {
+            (a, b)
+        } else {
             let (da, db) = self.rise_deficit(length);
             (a - da, b - db)
-        } else {
-            (a, b)
         }
     }
 
     /// `(a, b)` with what the rise takes from the line over the first `x` cells
-    /// behind the edge, `int_0^x L(s) e^(-s / l) ds = a p_cell + b p_neighbour`
-    /// (`l` the rise): with `L(s) = (p_c - theta d) + d s`, `d = p_n - p_c`, and the
+    /// behind the edge, `int_0^x L(s) (1 - rho(s)) ds = a p_cell + b p_neighbour`:
+    /// with `L(s) = (p_c - theta d) + d s`, `d = p_n - p_c`, and per term the
     /// moments `E = int_0^x e^(-s/l) ds = l (1 - e^(-x/l))`, `M = int_0^x s e^(-s/l)
-    /// ds = l E - l x e^(-x/l)`, it is `(p_c - theta d) E + d M`. Zero without a rise.
+    /// ds = l E - l x e^(-x/l)`, it is `sum_m a_m ((p_c - theta d) E_m + d M_m)`.
+    /// Zero without a rise.
     pub fn rise_deficit(&self, x: f64) -> (f64, f64) {
-        if self.rise <= 0.0 {
-            return (0.0, 0.0);
+        let (mut da, mut db) = (0.0, 0.0);
+        for (amplitude, l) in self.rise.terms() {
+            let decay = (-x / l).exp();
+            let e = -l * (-x / l).exp_m1();
+            let m = l * e - l * x * decay;
+            let (ta, tb) = match self.neighbour {
+                Some(_) => (e * (1.0 + self.theta) - m, m - self.theta * e),
+                None => (e, 0.0),
+            };
+            da += amplitude * ta;
+            db += amplitude * tb;
         }
-        let l = self.rise;
-        let decay = (-x / l).exp();
-        let e = -l * (-x / l).exp_m1();
-        let m = l * e - l * x * decay;
-        match self.neighbour {
-            Some(_) => (e * (1.0 + self.theta) - m, m - self.theta * e),
-            None => (e, 0.0),
-        }
+        (da, db)
     }
 
-    /// The pressure at the cell's centre per unit of its centre value: `1 -
-    /// e^(-theta / rise)` (1 without a rise).
+    /// The pressure at the cell's centre per unit of its centre value: `rho(theta)`
+    /// (1 without a rise).
     pub fn centre_share(&self) -> f64 {
-        if self.rise > 0.0 {
-            -(-self.theta / self.rise).exp_m1()
-        } else {
-            1.0
-        }
+        self.rise.share(self.theta)
     }
 }
 
@@ -371,11 +432,25 @@ pub(crate) mod tests {
     fn a_cells_mean_pressure_is_the_integral_of_its_rising_profile() {
         // The profile behind an edge theta cells from the centre: the line through
         // the centre value and the neighbour's (one cell downstream), times
-        // 1 - e^(-s / rise), integrated over the loaded part by quadrature.
+        // 1 - sum_m a_m e^(-s / l_m), integrated over the loaded part by quadrature;
+        // one exponential of several lengths and two (a branch's rise).
         let (centre, next) = (0.7, 1.3);
+        let rises: [&[(f64, f64)]; 6] = [
+            &[],
+            &[(1.0, 1e-3)],
+            &[(1.0, 0.04)],
+            &[(1.0, 0.3)],
+            &[(1.0, 0.9)],
+            &[(0.7, 0.02), (0.3, 0.6)],
+        ];
         for neighbour in [Some(0), None] {
             for theta in [1e-3, 0.05, 0.3, 0.5, 1.0] {
-                for rise in [0.0, 1e-3, 0.04, 0.3, 0.9] {
+                for terms in rises {
+                    let mut rise = Rise::NONE;
+                    for (m, &(a, l)) in terms.iter().enumerate() {
+                        rise.amplitudes[m] = a;
+                        rise.lengths[m] = l;
+                    }
                     let edge = ContactEdge {
                         cell: 1,
                         neighbour,
@@ -389,19 +464,20 @@ pub(crate) mod tests {
                     };
                     let profile = |s: f64| {
                         let line = centre + (s - theta) * slope;
-                        if rise > 0.0 {
-                            line * (1.0 - (-s / rise).exp())
-                        } else {
-                            line
-                        }
+                        line * (1.0 - terms.iter().map(|(a, l)| a * (-s / l).exp()).sum::<f64>())
                     };
                     let (a, b) = edge.mean_weights();
                     let mean = a * centre + b * next;
-                    // Panels fine against the rise (the integrand's scale) over
-                    // its first 40 lengths.
+                    // Panels fine against the shortest length (the integrand's
+                    // scale) over 40 of the longest.
                     let x = theta + 0.5;
-                    let split = if rise > 0.0 { (40.0 * rise).min(x) } else { x };
-                    let quadrature = simpson(profile, 0.0, split, 20_000)
+                    let longest = terms.iter().map(|t| t.1).fold(0.0, f64::max);
+                    let split = if longest > 0.0 {
+                        (40.0 * longest).min(x)
+                    } else {
+                        x
+                    };
+                    let quadrature = simpson(profile, 0.0, split, 40_000)
                         + if split < x {
                             simpson(profile, split, x, 2_000)
                         } else {
@@ -409,14 +485,14 @@ pub(crate) mod tests {
                         };
                     assert!(
                         (mean - quadrature).abs() < 1e-10,
-                        "theta {theta}, rise {rise}, {neighbour:?}: {mean} {quadrature}"
+                        "theta {theta}, rise {terms:?}, {neighbour:?}: {mean} {quadrature}"
                     );
-                    let share = if rise > 0.0 {
-                        profile(theta) / centre
-                    } else {
-                        1.0
-                    };
-                    assert!((edge.centre_share() - share).abs() < 1e-14);
+                    let share = profile(theta) / centre;
+                    assert!(
+                        (edge.centre_share() - share).abs() < 1e-14,
+                        "{} {share}",
+                        edge.centre_share()
+                    );
                 }
             }
         }
