@@ -30,7 +30,11 @@
 //! / L) = -C_1 / L < 0` and `Q(-inf) > 0`: two real roots, one in `(-1/L, 0)` and
 //! one below `-1/L`, both decaying along u; with them `w1 = C_1 A / (1 + L s) e^(s
 //! u)` and `wv = c A / s e^(s u)`. The two amplitudes follow from `w1(0) = wv(0) =
-//! 0`; `p(0) = 0` then holds by the contact condition (checked).
+//! 0`; `p(0) = 0` then holds by the contact condition (checked). Without the glassy
+//! spring (`C_g = 0`, a Kelvin–Voigt branch and a flow) `Q(s) = (C_1 + c L) s + c`
+//! has one root, its amplitude follows from `w1(0) = 0` (then `wv(0) = H(0) - w1(0)
+//! = 0` by the contact condition), and the pressure jumps at the edge to `p(0) =
+//! alpha + A`.
 //!
 //! **Trailing edge.** p rises from 0, and its particular part falls with slope
 //! `beta < 0`; the first zero `U` of p after the edge ends the contact. Behind it
@@ -56,7 +60,7 @@ pub struct BurgersRigidBase {
     pub radius: f64,
     /// Normal load Q.
     pub load: f64,
-    /// Glassy compliance C_g (> 0).
+    /// Glassy compliance C_g (>= 0).
     pub glassy: f64,
     /// Branch compliance C_1 (> 0).
     pub branch: f64,
@@ -145,8 +149,12 @@ impl BurgersRow {
         self.leading_edge * self.load() - first
     }
 
-    /// Largest pressure and its distance u from the leading edge.
+    /// Largest pressure and its distance u from the leading edge (at the edge
+    /// where the pressure jumps there and falls from it).
     pub fn peak(&self) -> (f64, f64) {
+        if self.slope(0.0) <= 0.0 {
+            return (self.pressure(0.0), 0.0);
+        }
         let u = brent(|u| self.slope(u), 0.0, self.length, 1e-15 * self.length);
         (self.pressure(u), u)
     }
@@ -165,16 +173,26 @@ impl BurgersRigidBase {
         // Q(s) = cg L s^2 + B s + c, B = cg + c1 + c L: the roots without
         // cancellation.
         let big_b = cg + c1 + c * l;
-        let q = -0.5 * (big_b + (big_b * big_b - 4.0 * cg * l * c).sqrt());
-        let roots = [q / (cg * l), c / q];
-        let branch_factor = roots.map(|s| c1 / (1.0 + l * s));
-        let flow_factor = roots.map(|s| c / s);
-        // w1(0) = 0 and wv(0) = 0.
-        let det = branch_factor[0] * flow_factor[1] - branch_factor[1] * flow_factor[0];
-        let amplitudes = [
-            (-gamma * flow_factor[1] + eps * branch_factor[1]) / det,
-            (-eps * branch_factor[0] + gamma * flow_factor[0]) / det,
-        ];
+        let (roots, amplitudes, branch_factor, flow_factor);
+        if cg > 0.0 {
+            let q = -0.5 * (big_b + (big_b * big_b - 4.0 * cg * l * c).sqrt());
+            roots = [q / (cg * l), c / q];
+            branch_factor = roots.map(|s| c1 / (1.0 + l * s));
+            flow_factor = roots.map(|s| c / s);
+            // w1(0) = 0 and wv(0) = 0.
+            let det = branch_factor[0] * flow_factor[1] - branch_factor[1] * flow_factor[0];
+            amplitudes = [
+                (-gamma * flow_factor[1] + eps * branch_factor[1]) / det,
+                (-eps * branch_factor[0] + gamma * flow_factor[0]) / det,
+            ];
+        } else {
+            // One root; the second term unused (amplitude 0, any decaying root).
+            roots = [-c / big_b, -1.0];
+            branch_factor = roots.map(|s| c1 / (1.0 + l * s));
+            flow_factor = roots.map(|s| c / s);
+            amplitudes = [-gamma / branch_factor[0], 0.0];
+            assert!((eps + flow_factor[0] * amplitudes[0]).abs() <= 1e-9 * eps.abs());
+        }
         let mut row = BurgersRow {
             leading_edge: b,
             alpha,
@@ -189,7 +207,7 @@ impl BurgersRigidBase {
         };
         let scale = alpha.abs() + amplitudes[0].abs() + amplitudes[1].abs();
         assert!(
-            row.pressure(0.0).abs() < 1e-9 * scale,
+            cg == 0.0 || row.pressure(0.0).abs() < 1e-9 * scale,
             "p(0) = {} (scale {scale})",
             row.pressure(0.0)
         );
