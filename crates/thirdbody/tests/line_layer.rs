@@ -218,3 +218,91 @@ fn a_creep_length_far_below_the_cell_is_one_row_of_the_row_solution() {
         assert!(e[3].abs() < 1e-3, "energy balance {:e}", e[3]);
     }
 }
+
+/// A Burgers layer (the paper's Maxwell element and a Kelvin–Voigt branch, C_1 =
+/// C0, tau = 0.1, 1 and 10 T) in a line contact on a rigid base against one row of
+/// its closed form (`tests/common/rigid_base_burgers.rs`): at the paper-like V T =
+/// 0.01 on 1024 and 4096 cells, and in the slow limit (V T = 1e-5 and 1e-6, a
+/// quarter and a fortieth of the cell, the load scaled so that the half-width stays
+/// near 0.02), where the pressure rises behind the leading edge over the layer's two
+/// exponentials inside the entry cell (`layer::Rise`).
+#[test]
+fn a_burgers_layer_on_a_rigid_base_is_one_row_of_its_closed_form() {
+    use common::rigid_base_burgers::BurgersRigidBase;
+    let b0: f64 = 0.02;
+    let mut worst = [0.0f64; 4];
+    for ratio in [0.1, 1.0, 10.0] {
+        for (creep_length, cells) in [(0.01, 1024), (0.01, 4096), (1e-5, 1024), (1e-6, 1024)] {
+            let load = if creep_length < 1e-3 {
+                creep_length * b0 * b0 / (2.0 * RADIUS * COMPLIANCE)
+            } else {
+                LOAD
+            };
+            let oracle = BurgersRigidBase {
+                radius: RADIUS,
+                load,
+                glassy: COMPLIANCE,
+                branch: COMPLIANCE,
+                branch_length: ratio * creep_length,
+                flow: COMPLIANCE,
+                flow_length: creep_length,
+            };
+            let b = brent(|b| oracle.row(b).load() - load, 1e-4, 0.5, 1e-15);
+            let row = oracle.row(b);
+            let (peak, _) = row.peak();
+            let friction = row.moment() / (RADIUS * row.load());
+            let mut case = line_case(
+                Layer {
+                    rheology: Rheology::Burgers {
+                        glassy_compliance: COMPLIANCE,
+                        relaxation_time: 1.0,
+                        compliance: COMPLIANCE,
+                        retardation_time: ratio,
+                    },
+                    law: ComplianceLaw::Linear,
+                    integration: Integration::Exact,
+                },
+                1e9,
+                cells,
+            );
+            case.loading.normal_load = load;
+            case.loading.velocity = Some(creep_length);
+            let m = solve(&case, &SolverParams::default()).unwrap().summary();
+            let e = [
+                m.max_pressure / peak - 1.0,
+                m.friction_coefficient / friction - 1.0,
+                m.penetration / (b * b / (2.0 * RADIUS)) - 1.0,
+                m.dissipation_friction_coefficient / m.friction_coefficient - 1.0,
+            ];
+            eprintln!(
+                "tau = {ratio} T, V T = {creep_length:e}, {cells} cells (h / V T = {:.1}): \
+                 p_max {:+.2e}, mu {:+.2e}, D {:+.2e}, energy balance {:+.2e}",
+                m.cell_size / creep_length,
+                e[0],
+                e[1],
+                e[2],
+                e[3]
+            );
+            for (w, v) in worst.iter_mut().zip(e) {
+                *w = w.max(v.abs());
+            }
+            // Measured: at V T = 0.01 within 5.9e-6 (1024 cells) and 4.8e-7 (4096);
+            // in the slow limit p_max within 6.8e-4, mu and D 1.6e-4, the energy
+            // balance 1.6e-4.
+            let (tolerance, peak_tolerance) = match (creep_length < 1e-3, cells) {
+                (false, 4096) => (1e-6, 1e-6),
+                (false, _) => (1e-5, 1e-5),
+                (true, _) => (5e-4, 2e-3),
+            };
+            assert!(
+                e[0].abs() < peak_tolerance,
+                "tau {ratio}, L {creep_length}: {e:?}"
+            );
+            for v in &e[1..3] {
+                assert!(v.abs() < tolerance, "tau {ratio}, L {creep_length}: {e:?}");
+            }
+            assert!(e[3].abs() < 1e-3, "tau {ratio}, L {creep_length}: {e:?}");
+        }
+    }
+    eprintln!("worst (p_max, mu, D, energy balance): {worst:?}");
+}
