@@ -527,14 +527,6 @@ impl BranchStep {
             - pe * rise.share(0.0) * start
             - integral
     }
-
-    /// What the exit value of an entry cell at `theta` gains per unit of its
-    /// downstream neighbour's forcing, through the centre value and the downstream
-    /// half cell (per unit of `C_k / C[0]`).
-    fn entry_exit_gain(&self, theta: f64, rise: Rise) -> f64 {
-        let (_, of_slope) = self.entry_gains(theta, rise);
-        self.keep_half * of_slope + 0.5 * self.ramp_half - self.exit_deficit(theta, rise).1
-    }
 }
 
 /// `int_0^t s^n e^(-rate s) ds` for n = 0, 1 and `rate >= 0`: by their series
@@ -640,13 +632,14 @@ fn shortest_scale(rise: Rise, branches: &[BranchStep]) -> f64 {
     shortest
 }
 
-/// `sum_k b_k (C_k / C[0]) entry_exit_gain_k(theta)`: the share of a cell's `J_ii`
-/// that reaches it through the exit value of an upstream entry cell at `theta`
-/// behind `rise`.
-fn entry_share(branches: &[BranchStep], theta: f64, rise: Rise) -> f64 {
+/// `sum_k b_k (C_k / C[0]) g_k`, `g_k` what branch k's exit value of an entry cell
+/// gains per unit of its downstream neighbour's forcing ([`EntryGains::exit_gain`]):
+/// the share of that neighbour's `J_ii` that reaches it through the entry cell.
+fn entry_share(branches: &[BranchStep], gains: &[EntryGains]) -> f64 {
     branches
         .iter()
-        .map(|b| b.keep_half * b.scale * b.entry_exit_gain(theta, rise))
+        .zip(gains)
+        .map(|(b, g)| b.keep_half * b.scale * g.exit_gain(b))
         .sum()
 }
 
@@ -1411,36 +1404,6 @@ impl ViscoelasticRows {
         } else {
             Vec::new()
         };
-        for (k, &theta) in entries.iter().enumerate() {
-            if theta <= 0.0 {
-                continue;
-            }
-            // An entry cell's branches are forced from the edge only; the cell
-            // downstream of it gets the entry's exit value's share instead of the
-            // centred slope's.
-            let ((_, df), (_, dq)) = self.forcing_and_creep(p[k]);
-            let rise = self.rise;
-            let own: f64 = self
-                .branches
-                .iter()
-                .map(|b| {
-                    let (of_forcing, of_slope) = b.entry_gains(theta, rise);
-                    b.scale * (of_forcing - of_slope)
-                })
-                .sum();
-            // The flow from the edge: `theta q_k - theta^2 (q_{k-1} - q_k) / 2` at
-            // the centre, `b q_{k-1}` of what it passes on reaching the downstream
-            // neighbour's own centre value.
-            let neighbour = k % self.nx > 0;
-            let flow_own = entry_centre_weights(theta, neighbour, rise).0;
-            let glassy = self.glassy_scale * entry_edge(theta, neighbour, rise).centre_share();
-            diagonal[k] = (glassy + own) * df + flow_own * self.flow_per_cell * dq;
-            if neighbour {
-                diagonal[k - 1] +=
-                    (lag_self + entry_share(&self.branches, theta, rise)) * forcing_slope[k - 1];
-                diagonal[k - 1] += entry_flow_weights(theta, true, rise).1 * flow_slope[k - 1];
-            }
-        }
         // Each entry cell's branch gains, once per linearisation rather than once
         // per product (with a rise each costs a few exponentials per branch).
         let mut entry_slots = vec![u32::MAX; entries.len()];
@@ -1453,6 +1416,37 @@ impl ViscoelasticRows {
                         .iter()
                         .map(|b| EntryGains::new(b, theta, self.rise)),
                 );
+            }
+        }
+        for (k, &theta) in entries.iter().enumerate() {
+            if theta <= 0.0 {
+                continue;
+            }
+            // An entry cell's branches are forced from the edge only; the cell
+            // downstream of it gets the entry's exit value's share instead of the
+            // centred slope's.
+            let ((_, df), (_, dq)) = self.forcing_and_creep(p[k]);
+            let rise = self.rise;
+            let n = self.branches.len();
+            let slot = entry_slots[k] as usize;
+            let gains = &entry_gains[slot * n..(slot + 1) * n];
+            let own: f64 = self
+                .branches
+                .iter()
+                .zip(gains)
+                .map(|(b, g)| b.scale * (g.of_forcing - g.of_slope))
+                .sum();
+            // The flow from the edge: `theta q_k - theta^2 (q_{k-1} - q_k) / 2` at
+            // the centre, `b q_{k-1}` of what it passes on reaching the downstream
+            // neighbour's own centre value.
+            let neighbour = k % self.nx > 0;
+            let flow_own = entry_centre_weights(theta, neighbour, rise).0;
+            let glassy = self.glassy_scale * entry_edge(theta, neighbour, rise).centre_share();
+            diagonal[k] = (glassy + own) * df + flow_own * self.flow_per_cell * dq;
+            if neighbour {
+                diagonal[k - 1] +=
+                    (lag_self + entry_share(&self.branches, gains)) * forcing_slope[k - 1];
+                diagonal[k - 1] += entry_flow_weights(theta, true, rise).1 * flow_slope[k - 1];
             }
         }
         ViscoelasticJacobian {
@@ -1611,7 +1605,9 @@ impl EntryGains {
         }
     }
 
-    /// [`BranchStep::entry_exit_gain`] from the stored gains.
+    /// What the branch's exit value gains per unit of the downstream neighbour's
+    /// forcing, through the centre value and the downstream half cell, less what
+    /// the rise takes there.
     fn exit_gain(&self, b: &BranchStep) -> f64 {
         b.keep_half * self.of_slope + 0.5 * b.ramp_half - self.exit_slope
     }
@@ -1753,14 +1749,10 @@ impl ViscoelasticJacobian {
         }
     }
 
-    /// `sum_k b_k (C_k / C[0]) entry_exit_gain_k(theta)`: the part of a cell's
-    /// `J_ii` that reaches it through the exit value of the upstream entry cell `k`.
+    /// The part of a cell's `J_ii` that reaches it through the exit value of the
+    /// upstream entry cell `k` ([`entry_share`]).
     fn entry_share(&self, k: usize) -> f64 {
-        self.branches
-            .iter()
-            .zip(self.gains(k))
-            .map(|(b, g)| b.keep_half * b.scale * g.exit_gain(b))
-            .sum()
+        entry_share(&self.branches, self.gains(k))
     }
 
     /// Solves `(J + extra_diagonal I) y = r` restricted to the cells where `active`
