@@ -321,22 +321,16 @@ impl RigidBase {
     /// Load, moment, largest pressure and smallest trailing edge for a contact of
     /// radius b0, by Gauss–Legendre in theta (`y = b0 sin theta`), plus the row y = 0.
     pub fn contact(&self, law: &Law, b0: f64, rows: usize) -> (f64, f64, f64, f64) {
-        let (nodes, weights) = gauss_legendre(rows);
         let centre = self.row(law, b0);
         let (mut load, mut moment) = (0.0, 0.0);
         let (mut pmax, mut xmin) = (centre.max_pressure, centre.trailing_edge);
-        let half_pi = std::f64::consts::FRAC_PI_2;
-        for (t, w) in nodes.iter().zip(&weights) {
-            // theta in (0, pi/2); both halves of y by symmetry.
-            let theta = half_pi * (t + 1.0) / 2.0;
-            let b = b0 * theta.cos();
+        for_each_row(b0, rows, |b, weight| {
             let row = self.row(law, b);
-            let jac = 2.0 * (half_pi / 2.0) * w * b;
-            load += jac * row.load;
-            moment += jac * row.moment;
+            load += weight * row.load;
+            moment += weight * row.moment;
             pmax = pmax.max(row.max_pressure);
             xmin = xmin.min(row.trailing_edge);
-        }
+        });
         (load, moment, pmax, xmin)
     }
 
@@ -348,16 +342,8 @@ impl RigidBase {
     /// As [`RigidBase::solve`] with a given number of Gauss–Legendre rows.
     pub fn solve_with(&self, law: &Law, rows: usize) -> Reference {
         let excess = |b0: f64| self.contact(law, b0, rows).0 / self.load - 1.0;
-        // Bracket b0: the load grows without bound with b0.
-        let mut hi = self.creep_length.max(1e-6 * self.radius);
-        while excess(hi) < 0.0 {
-            hi *= 2.0;
-        }
-        let mut lo = hi / 2.0;
-        while excess(lo) > 0.0 {
-            lo /= 2.0;
-        }
-        let b0 = brent(excess, lo, hi, 1e-14 * hi);
+        // The load grows without bound with b0.
+        let b0 = contact_radius(excess, self.creep_length.max(1e-6 * self.radius));
         let (load, moment, pmax, xmin) = self.contact(law, b0, rows);
         Reference {
             approach: b0 * b0 / (2.0 * self.radius),
@@ -451,6 +437,35 @@ fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
         }
     }
     (a + b) / 2.0
+}
+
+/// Visits the rows of a contact of radius `b0` (leading edges `b = b0 cos theta`)
+/// at `rows` Gauss–Legendre nodes in theta over (0, pi/2) (`y = b0 sin theta`),
+/// each with its weight in `int dy` over both halves of y (by symmetry).
+pub fn for_each_row(b0: f64, rows: usize, mut visit: impl FnMut(f64, f64)) {
+    let (nodes, weights) = gauss_legendre(rows);
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    for (t, w) in nodes.iter().zip(&weights) {
+        let theta = half_pi * (t + 1.0) / 2.0;
+        let b = b0 * theta.cos();
+        visit(b, 2.0 * (half_pi / 2.0) * w * b);
+    }
+}
+
+/// The contact radius where `excess(b0)`, increasing (the load over its target,
+/// less 1), vanishes: bracketed by doubling and halving from `start`, then Brent's
+/// method.
+pub fn contact_radius(excess: impl Fn(f64) -> f64, start: f64) -> f64 {
+    let mut hi = start;
+    while excess(hi) < 0.0 {
+        hi *= 2.0;
+    }
+    let mut lo = hi / 2.0;
+    while excess(lo) > 0.0 {
+        hi = lo;
+        lo /= 2.0;
+    }
+    brent(excess, lo, hi, 1e-14 * hi)
 }
 
 /// Root of f in [a, b] (f(a), f(b) of opposite signs or zero) by Brent's method

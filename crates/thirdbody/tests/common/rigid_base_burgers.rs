@@ -50,7 +50,7 @@
 
 #![allow(dead_code)]
 
-use super::rigid_base::{brent, gauss_legendre};
+use super::rigid_base::{brent, contact_radius, for_each_row};
 use super::rigid_base_viscoelastic::Reference;
 
 /// A slider on a linear Burgers layer over a rigid base.
@@ -242,17 +242,12 @@ impl BurgersRigidBase {
 
     /// Load and moment of a contact of radius b0, and the row y = 0.
     pub fn contact(&self, b0: f64, rows: usize) -> (f64, f64, BurgersRow) {
-        let (nodes, weights) = gauss_legendre(rows);
-        let half_pi = std::f64::consts::FRAC_PI_2;
         let (mut load, mut moment) = (0.0, 0.0);
-        for (t, w) in nodes.iter().zip(&weights) {
-            let phi = half_pi * (t + 1.0) / 2.0;
-            let b = b0 * phi.cos();
+        for_each_row(b0, rows, |b, weight| {
             let row = self.row(b);
-            let jac = 2.0 * (half_pi / 2.0) * w * b;
-            load += jac * row.load();
-            moment += jac * row.moment();
-        }
+            load += weight * row.load();
+            moment += weight * row.moment();
+        });
         (load, moment, self.row(b0))
     }
 
@@ -261,17 +256,10 @@ impl BurgersRigidBase {
         let rows = 64;
         let excess = |b0: f64| self.contact(b0, rows).0 / self.load - 1.0;
         // The slow limit's half disc, `Q = (4/3) V T b0^3 / (2 R C_v)`, as a start.
-        let mut hi =
-            (3.0 * self.load * 2.0 * self.radius * self.flow / (4.0 * self.flow_length)).cbrt();
-        while excess(hi) < 0.0 {
-            hi *= 2.0;
-        }
-        let mut lo = hi / 2.0;
-        while excess(lo) > 0.0 {
-            hi = lo;
-            lo /= 2.0;
-        }
-        let b0 = brent(excess, lo, hi, 1e-14 * hi);
+        let b0 = contact_radius(
+            excess,
+            (3.0 * self.load * 2.0 * self.radius * self.flow / (4.0 * self.flow_length)).cbrt(),
+        );
         let (load, moment, centre) = self.contact(b0, rows);
         let (peak, at) = centre.peak();
         Reference {

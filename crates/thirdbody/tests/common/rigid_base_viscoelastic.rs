@@ -130,7 +130,9 @@
 //!   away from the leading-edge layer, so `M = L1 Q`).
 #![allow(dead_code)]
 
-use super::rigid_base::{brent, gauss_legendre, panel_quadrature, z_minus_one_minus_exp};
+use super::rigid_base::{
+    brent, contact_radius, for_each_row, panel_quadrature, z_minus_one_minus_exp,
+};
 
 /// Gauss–Legendre nodes across the y range (in theta, one half by symmetry).
 pub const ROWS: usize = 64;
@@ -377,18 +379,12 @@ impl ViscoelasticRigidBase {
     /// Load and moment of a contact of radius b0, by Gauss–Legendre in theta
     /// (`y = b0 sin theta`), and the row y = 0.
     pub fn contact(&self, b0: f64, rows: usize) -> (f64, f64, Row) {
-        let (nodes, weights) = gauss_legendre(rows);
-        let half_pi = std::f64::consts::FRAC_PI_2;
         let (mut load, mut moment) = (0.0, 0.0);
-        for (t, w) in nodes.iter().zip(&weights) {
-            // theta in (0, pi/2); both halves of y by symmetry.
-            let theta = half_pi * (t + 1.0) / 2.0;
-            let b = b0 * theta.cos();
+        for_each_row(b0, rows, |b, weight| {
             let row = self.row(b);
-            let jac = 2.0 * (half_pi / 2.0) * w * b;
-            load += jac * row.load;
-            moment += jac * row.moment;
-        }
+            load += weight * row.load;
+            moment += weight * row.moment;
+        });
         (load, moment, self.row(b0))
     }
 
@@ -404,16 +400,7 @@ impl ViscoelasticRigidBase {
         let winkler = (4.0 * self.radius * self.rheology.relaxed() * self.load
             / std::f64::consts::PI)
             .powf(0.25);
-        let mut hi = winkler;
-        while excess(hi) < 0.0 {
-            hi *= 2.0;
-        }
-        let mut lo = hi / 2.0;
-        while excess(lo) > 0.0 {
-            hi = lo;
-            lo /= 2.0;
-        }
-        let b0 = brent(excess, lo, hi, 1e-14 * hi);
+        let b0 = contact_radius(excess, winkler);
         let (load, moment, centre) = self.contact(b0, rows);
         Reference {
             approach: b0 * b0 / (2.0 * self.radius),
