@@ -469,24 +469,48 @@ impl BranchStep {
     /// [`decaying_moments`] at the rate `|x - 1/l_m|`, written so that nothing
     /// overflows for any x (relaxed, `x = inf`: `G0 = a_m e^(-s / l_m)`, `H1 = 0`).
     fn rise_deficit(&self, s: f64, rise: Rise) -> (f64, f64) {
+        self.rise_deficit_given(s, rise, &rise_decays(s, rise))
+    }
+
+    /// [`Self::rise_deficit`] given each term's `e^(-s / l_m)` ([`rise_decays`],
+    /// shared by the branches at a quadrature node).
+    fn rise_deficit_given(&self, s: f64, rise: Rise, decays: &[f64; RISE_TERMS]) -> (f64, f64) {
         let x = self.cells_per_creep_length;
         if x == 0.0 {
             return (0.0, 0.0);
         }
         let (mut g0, mut h1) = (0.0, 0.0);
-        for (amplitude, l) in rise.terms() {
+        // e^(-x s) once for every term; each term's own decay e^(-s/l) then gives
+        // the moments' e^(-|x - 1/l| s) as a ratio (where neither underflows).
+        let branch_decay = if x.is_finite() { decay(x * s) } else { 0.0 };
+        let terms = rise.amplitudes.iter().zip(&rise.lengths).zip(decays);
+        for ((&amplitude, &l), &rise_decay) in terms {
+            if amplitude == 0.0 || l <= 0.0 {
+                continue;
+            }
             let r = 1.0 / l;
             let (g, h) = if x.is_infinite() {
-                (decay(s * r), 0.0)
+                (rise_decay, 0.0)
             } else if x >= r {
                 // Over v: e^(-s/l) e^(-(x - 1/l) v).
-                let [m0, m1] = decaying_moments(s, x - r);
-                let c = x * decay(s * r);
-                (c * m0, c * m1)
+                if rise_decay == 0.0 {
+                    (0.0, 0.0)
+                } else {
+                    let rate = x - r;
+                    let [m0, m1] = if branch_decay > 0.0 {
+                        moments_with_decay(s, rate, branch_decay / rise_decay)
+                    } else {
+                        decaying_moments(s, rate)
+                    };
+                    let c = x * rise_decay;
+                    (c * m0, c * m1)
+                }
+            } else if branch_decay == 0.0 {
+                (0.0, 0.0)
             } else {
                 // Over u = s - v: e^(-x s) e^(-(1/l - x) u).
-                let [m0, m1] = decaying_moments(s, r - x);
-                let c = x * decay(x * s);
+                let [m0, m1] = moments_with_decay(s, r - x, rise_decay / branch_decay);
+                let c = x * branch_decay;
                 (c * m0, c * (s * m0 - m1))
             };
             g0 += amplitude * g;
@@ -497,9 +521,21 @@ impl BranchStep {
 
     /// The branch `s` cells behind a leading edge where it held `start`, forced by
     /// `scale (a + d s)(1 - e^(-s / l))` ([`Self::rise_deficit`]).
-    fn behind_rise(&self, start: f64, (a, d): (f64, f64), s: f64, rise: Rise) -> f64 {
+    fn behind_rise(&self, start: f64, forcing: (f64, f64), s: f64, rise: Rise) -> f64 {
+        self.behind_rise_given(start, forcing, s, rise, &rise_decays(s, rise))
+    }
+
+    /// [`Self::behind_rise`] given the rise's decays at `s` ([`rise_decays`]).
+    fn behind_rise_given(
+        &self,
+        start: f64,
+        (a, d): (f64, f64),
+        s: f64,
+        rise: Rise,
+        decays: &[f64; RISE_TERMS],
+    ) -> f64 {
         let y = s * self.cells_per_creep_length;
-        let (g0, h1) = self.rise_deficit(s, rise);
+        let (g0, h1) = self.rise_deficit_given(s, rise, decays);
         let of_a = -(-y).exp_m1() - g0;
         let of_d = s * ramp_gain(y) - (s * g0 - h1);
         decay(y) * start + self.scale * (a * of_a + d * of_d)
@@ -518,7 +554,10 @@ impl BranchStep {
         let integral: f64 = path
             .nodes
             .iter()
-            .map(|&(s, weighted_slope)| self.behind_rise(start, forcing, s, rise) * weighted_slope)
+            .map(|node| {
+                self.behind_rise_given(start, forcing, node.at, rise, &node.decays)
+                    * node.weighted_slope
+            })
             .sum();
         let end = self.behind_rise(start, forcing, path.length, rise);
         *e = end;
@@ -530,32 +569,51 @@ impl BranchStep {
 }
 
 /// `int_0^t s^n e^(-rate s) ds` for n = 0, 1 and `rate >= 0`: by their series
-/// where `rate t < 1/2` (no cancellation as the rate vanishes), else `m0 = (1 -
+/// where `rate t <` [`SERIES_BELOW`] (no cancellation as the rate vanishes), else `m0 = (1 -
 /// e^(-z)) / rate`, `m1 = (m0 - t e^(-z)) / rate`, `z = rate t`.
 fn decaying_moments(t: f64, rate: f64) -> [f64; 2] {
     let z = rate * t;
-    if z < 0.5 {
-        // m0 = t sum (-z)^k / (k+1)!, m1 = t^2 sum (-z)^k / (k! (k+2)).
-        // The terms fall by z / (k + 1) <= 1/2 each: stop below 1e-17 of the sums
-        // (at most 24 terms, 7 at z = 1e-2).
+    moments_with_decay(t, rate, if z < SERIES_BELOW { 1.0 } else { decay(z) })
+}
+
+/// [`decaying_moments`] given `e^(-rate t)` (used only where `rate t >=`
+/// [`SERIES_BELOW`]).
+fn moments_with_decay(t: f64, rate: f64, decay_at_t: f64) -> [f64; 2] {
+    let z = rate * t;
+    if z < SERIES_BELOW {
+        // m0 = t sum (-z)^k / (k+1)!, m1 = t^2 sum (-z)^k / (k! (k+2)). The terms
+        // fall by z / (k + 1) < 1/10 each: below 1e-17 of the sums within 16.
         let (mut term, mut s0, mut s1) = (1.0f64, 0.0, 0.0);
-        for k in 0..24 {
-            let k = k as f64;
-            s0 += term / (k + 1.0);
-            s1 += term / (k + 2.0);
-            term *= -z / (k + 1.0);
+        for k in 0..16 {
+            s0 += term * RECIPROCALS[k];
+            s1 += term * RECIPROCALS[k + 1];
+            term *= -z * RECIPROCALS[k];
             if term.abs() < 1e-17 {
                 break;
             }
         }
         [t * s0, t * t * s1]
     } else {
-        // No cancellation in 1 - e^(-z) for z >= 1/2.
-        let decay = decay(z);
-        let m0 = (1.0 - decay) / rate;
-        [m0, (m0 - t * decay) / rate]
+        // 1 - e^(-z) loses at most a digit to cancellation for z >= 1/10.
+        let m0 = (1.0 - decay_at_t) / rate;
+        [m0, (m0 - t * decay_at_t) / rate]
     }
 }
+
+/// Where [`moments_with_decay`] sums its series: `rate t` below this.
+const SERIES_BELOW: f64 = 0.1;
+
+/// `1 / (k + 1)` for the moments' series (multiplications, not divisions, in a loop
+/// that runs for every branch at every quadrature node).
+const RECIPROCALS: [f64; 17] = {
+    let mut r = [0.0; 17];
+    let mut k = 0;
+    while k < 17 {
+        r[k] = 1.0 / (k as f64 + 1.0);
+        k += 1;
+    }
+    r
+};
 
 /// `e^(-z)` for `z >= 0`, 0 beyond where it underflows (without the library's slow
 /// path for results below the smallest normal double).
@@ -573,13 +631,31 @@ fn decay(z: f64) -> f64 {
 /// from an eighth of `shortest`, the shortest of the rise's lengths and the
 /// branches' creep lengths (all may be far below the cell; panels growing fourfold
 /// missed the RK4 reference by 4e-7, threefold and twofold agree with it to 1e-7).
-/// `nodes` holds each node's place and weight times `p'` there, the same for every
-/// branch of the cell.
+/// `nodes` are the same for every branch of the cell.
 struct RisingPath {
     rise: Rise,
     length: f64,
     pressure: (f64, f64),
-    nodes: Vec<(f64, f64)>,
+    nodes: Vec<RisingNode>,
+}
+
+/// A node of [`RisingPath`]: its place, its weight times `p'` there and the rise's
+/// decays there ([`rise_decays`]).
+struct RisingNode {
+    at: f64,
+    weighted_slope: f64,
+    decays: [f64; RISE_TERMS],
+}
+
+/// Each term's `e^(-s / l_m)` (0 for unused terms).
+fn rise_decays(s: f64, rise: Rise) -> [f64; RISE_TERMS] {
+    let mut decays = [0.0; RISE_TERMS];
+    for ((d, &a), &l) in decays.iter_mut().zip(&rise.amplitudes).zip(&rise.lengths) {
+        if a != 0.0 && l > 0.0 {
+            *d = decay(s / l);
+        }
+    }
+    decays
 }
 
 impl RisingPath {
@@ -591,8 +667,11 @@ impl RisingPath {
         rule: &GaussLegendre,
     ) -> Self {
         let (pe, dp) = pressure;
-        let slope = |s: f64| {
-            let rate: f64 = rise.terms().map(|(a, l)| a * decay(s / l) / l).sum();
+        let slope = |s: f64, decays: &[f64; RISE_TERMS]| {
+            let rate: f64 = (0..RISE_TERMS)
+                .filter(|&m| rise.amplitudes[m] != 0.0 && rise.lengths[m] > 0.0)
+                .map(|m| rise.amplitudes[m] * decays[m] / rise.lengths[m])
+                .sum();
             dp * rise.share(s) + (pe + dp * s) * rate
         };
         let mut nodes = Vec::new();
@@ -601,8 +680,13 @@ impl RisingPath {
         loop {
             let (half, mid) = (0.5 * (hi - lo), 0.5 * (hi + lo));
             for (x, w) in rule.nodes.iter().zip(&rule.weights) {
-                let s = mid + half * x;
-                nodes.push((s, w * half * slope(s)));
+                let at = mid + half * x;
+                let decays = rise_decays(at, rise);
+                nodes.push(RisingNode {
+                    at,
+                    weighted_slope: w * half * slope(at, &decays),
+                    decays,
+                });
             }
             if hi >= length {
                 break;
