@@ -121,6 +121,16 @@ pub struct ContactEdge {
     pub rise: Rise,
 }
 
+/// `int_0^x s^n e^(-s / l) ds` for n = 0, 1, 2, by parts: `m_n = n l m_(n-1) - l
+/// x^n e^(-x/l)`, `m_0 = l (1 - e^(-x/l))`.
+pub(crate) fn exponential_moments(x: f64, l: f64) -> [f64; 3] {
+    let decay = (-x / l).exp();
+    let m0 = -l * (-x / l).exp_m1();
+    let m1 = l * m0 - l * x * decay;
+    let m2 = 2.0 * l * m1 - l * x * x * decay;
+    [m0, m1, m2]
+}
+
 /// Most exponentials a [`Rise`] keeps.
 pub const RISE_TERMS: usize = 4;
 
@@ -216,9 +226,7 @@ impl ContactEdge {
     pub fn rise_deficit(&self, x: f64) -> (f64, f64) {
         let (mut da, mut db) = (0.0, 0.0);
         for (amplitude, l) in self.rise.terms() {
-            let decay = (-x / l).exp();
-            let e = -l * (-x / l).exp_m1();
-            let m = l * e - l * x * decay;
+            let [e, m, _] = exponential_moments(x, l);
             let (ta, tb) = match self.neighbour {
                 Some(_) => (e * (1.0 + self.theta) - m, m - self.theta * e),
                 None => (e, 0.0),

@@ -158,8 +158,8 @@ use rayon::prelude::*;
 use super::law::SIGMOID_MONOTONE_DELTA;
 use super::rheology::{CreepForm, Flow};
 use super::{
-    ComplianceLaw, ContactEdge, Integration, Layer, LayerLinearisation, LayerResponse, Rise,
-    RISE_TERMS,
+    exponential_moments, ComplianceLaw, ContactEdge, Integration, Layer, LayerLinearisation,
+    LayerResponse, Rise, RISE_TERMS,
 };
 use crate::body::quadrature::GaussLegendre;
 use crate::convolution::Parallelism;
@@ -900,16 +900,6 @@ fn entry_centre_weights(theta: f64, has_neighbour: bool, rise: Rise) -> (f64, f6
     };
     let (da, db) = entry_edge(theta, has_neighbour, rise).rise_deficit(theta);
     (a - da, b - db)
-}
-
-/// `int_0^x s^n e^(-s / l) ds` for n = 0, 1, 2, by parts: `m_n = n l m_(n-1) - l
-/// x^n e^(-x/l)`, `m_0 = l (1 - e^(-x/l))`.
-fn exponential_moments(x: f64, l: f64) -> [f64; 3] {
-    let decay = (-x / l).exp();
-    let m0 = -l * (-x / l).exp_m1();
-    let m1 = l * m0 - l * x * decay;
-    let m2 = 2.0 * l * m1 - l * x * x * decay;
-    [m0, m1, m2]
 }
 
 /// `(1 - e^(-y) (1 + y)) / y`: a branch started at zero and driven over `y` creep
