@@ -28,7 +28,10 @@ fn coated_kernel_256(c: &mut Criterion) {
     for thickness in [0.001, 0.02] {
         group.bench_function(format!("h1={thickness}"), |b| {
             let body = Body::coated(COATING, thickness, SUBSTRATE).model();
-            b.iter(|| body.surface_kernel(cell, 256, 256, f64::INFINITY).unwrap())
+            b.iter(|| {
+                body.surface_kernel(cell, 256, 256, f64::INFINITY, true)
+                    .unwrap()
+            })
         });
     }
     group.finish();

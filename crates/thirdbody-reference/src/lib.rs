@@ -129,10 +129,13 @@ fn solve_dense_with(
     let grid = problem.grid();
     let n = grid.len();
     let (nx, ny) = (grid.nx(), grid.ny());
-    let kernel = problem
-        .body()
-        .model()
-        .surface_kernel(grid.cell(), nx, ny, problem.velocity())?;
+    let kernel = problem.body().model().surface_kernel(
+        grid.cell(),
+        nx,
+        ny,
+        problem.velocity(),
+        problem.body_lag(),
+    )?;
     let influence = DMatrix::<f64>::from_fn(n, n, |a, b| {
         let di = (a % nx) as i64 - (b % nx) as i64;
         let dj = (a / nx) as i64 - (b / nx) as i64;

@@ -34,6 +34,7 @@ struct SpectrumKey {
     cell_bits: u64,
     geometry: Geometry,
     velocity_bits: Option<u64>,
+    lag: bool,
 }
 
 /// What a DC-FFT plan depends on: the grid size and the parallelism.
@@ -127,13 +128,15 @@ impl KernelCache {
     /// The surface kernel of `body` on `grid`'s cells at sliding speed `velocity`,
     /// for `plan` (which must be for `grid`'s size), unless held: an even kernel
     /// given by its quadrant, with no spectrum built
-    /// ([`crate::convolution::ConvolutionPlan::even_kernel`]).
+    /// ([`crate::convolution::ConvolutionPlan::even_kernel`]). `lag` as for
+    /// [`crate::body::BodyModel::surface_kernel`].
     pub fn surface_spectrum(
         &mut self,
         body: &Body,
         grid: &Grid,
         plan: &Arc<ConvolutionPlan>,
         velocity: f64,
+        lag: bool,
     ) -> Result<Arc<KernelSpectrum>> {
         let key = SpectrumKey {
             body: body.clone(),
@@ -144,6 +147,7 @@ impl KernelCache {
                 .model()
                 .kernel_depends_on_velocity()
                 .then_some(velocity.to_bits()),
+            lag,
         };
         if let Some(k) = self.spectra.iter().position(|(k, _)| *k == key) {
             let entry = self.spectra.remove(k);
@@ -152,7 +156,7 @@ impl KernelCache {
             self.spectra_reused += 1;
             return Ok(spectrum);
         }
-        let spectrum = Arc::new(surface_kernel(body, grid, plan, velocity)?);
+        let spectrum = Arc::new(surface_kernel(body, grid, plan, velocity, lag)?);
         self.spectra_built += 1;
         if spectrum.bytes() <= self.byte_budget {
             keep(
@@ -204,22 +208,22 @@ mod tests {
         let mut cache = KernelCache::new();
         let plan = cache.plan(16, 12, Parallelism::Sequential).unwrap();
         let first = cache
-            .surface_spectrum(&coated(0.37), &grid, &plan, 1.0)
+            .surface_spectrum(&coated(0.37), &grid, &plan, 1.0, true)
             .unwrap();
         let again = cache
-            .surface_spectrum(&coated(0.37), &grid, &plan, 1.0)
+            .surface_spectrum(&coated(0.37), &grid, &plan, 1.0, true)
             .unwrap();
         assert!(Arc::ptr_eq(&first, &again));
         let other = cache
-            .surface_spectrum(&coated(0.38), &grid, &plan, 1.0)
+            .surface_spectrum(&coated(0.38), &grid, &plan, 1.0, true)
             .unwrap();
         assert!(!Arc::ptr_eq(&first, &other));
         assert_eq!(cache.len(), 2);
-        let fresh = surface_kernel(&coated(0.37), &grid, &plan, 1.0).unwrap();
+        let fresh = surface_kernel(&coated(0.37), &grid, &plan, 1.0, true).unwrap();
         assert_eq!(format!("{fresh:?}"), format!("{first:?}"));
         // A bad body is an error, and nothing is kept for it.
         assert!(cache
-            .surface_spectrum(&coated(-1.0), &grid, &plan, 1.0)
+            .surface_spectrum(&coated(-1.0), &grid, &plan, 1.0, true)
             .is_err());
         assert_eq!(cache.len(), 2);
         // Two built, one handed out again; the failed one is not counted.
@@ -233,14 +237,14 @@ mod tests {
         let plan = cache.plan(8, 8, Parallelism::Sequential).unwrap();
         for t in [0.1, 0.2, 0.3] {
             cache
-                .surface_spectrum(&coated(t), &grid, &plan, 1.0)
+                .surface_spectrum(&coated(t), &grid, &plan, 1.0, true)
                 .unwrap();
         }
         assert_eq!(cache.len(), 2);
         cache.clear();
         assert!(cache.is_empty());
         let mut none = KernelCache::with_capacity(0);
-        none.surface_spectrum(&coated(0.1), &grid, &plan, 1.0)
+        none.surface_spectrum(&coated(0.1), &grid, &plan, 1.0, true)
             .unwrap();
         assert!(none.is_empty());
     }

@@ -36,6 +36,11 @@ pub struct ContactProblem {
     /// times the sum of the cells' pressures to the body's displacement and the
     /// approach.
     pub(crate) datum_shift: f64,
+    /// The lag `c` of a viscoelastic body's creep shorter than a cell
+    /// ([`crate::body::BodyModel::creep_shift`]): `shape` holds the slider's height
+    /// read at `f - c df/dx`, and the solution gives the lag back to the body's
+    /// displacement.
+    pub(crate) creep_shift: f64,
     pub(crate) estimate: ContactEstimate,
 }
 
@@ -61,7 +66,10 @@ impl Case {
     ) -> Result<ContactProblem> {
         let plan = kernels.plan(grid.nx, grid.ny, parallelism)?;
         let velocity = self.velocity();
-        let spectrum = kernels.surface_spectrum(&self.body, grid, &plan, velocity)?;
+        // Without a layer the slider's shape is the body's displacement on the
+        // contact, so a body may give a lag of it to the gap.
+        let lag = self.layer.is_none();
+        let spectrum = kernels.surface_spectrum(&self.body, grid, &plan, velocity, lag)?;
         let datum_shift = spectrum.datum_shift();
         let influence = ConvolutionOperator::new(plan.convolver(), Arc::clone(&spectrum))?;
         let n = grid.len();
@@ -69,6 +77,17 @@ impl Case {
         let mut slope = vec![0.0; n];
         self.slider
             .sample_rows(grid, &mut shape, &mut slope, parallelism)?;
+        let creep_shift = if lag {
+            self.body.model().creep_shift(grid.cell, velocity)
+        } else {
+            0.0
+        };
+        if creep_shift != 0.0 {
+            shape
+                .iter_mut()
+                .zip(&slope)
+                .for_each(|(f, d)| *f -= creep_shift * d);
+        }
         Ok(ContactProblem {
             grid: *grid,
             body: self.body.clone(),
@@ -82,6 +101,7 @@ impl Case {
             load: self.loading.normal_load,
             velocity,
             datum_shift,
+            creep_shift,
             estimate: ContactEstimate::of(self),
         })
     }
@@ -123,8 +143,17 @@ impl ContactProblem {
             load: case.loading.normal_load,
             velocity: case.velocity(),
             datum_shift: 0.0,
+            creep_shift: 0.0,
             estimate: ContactEstimate::of(case),
         })
+    }
+
+    /// Whether the body's kernel left a lag of its displacement to the gap
+    /// ([`crate::body::BodyModel::creep_shift`]; assembled without a layer, a
+    /// viscoelastic body creeping over less than a few cells). Where it did not,
+    /// the kernels with and without the lag are the same.
+    pub fn body_lag(&self) -> bool {
+        self.creep_shift != 0.0
     }
 
     /// The window and cells.

@@ -340,7 +340,7 @@ fn coated_body_goes_through_the_dc_fft_operator() {
     let body = Body::coated(coating, thickness, substrate);
     // The kernel as the cache keeps it (its quadrant); the operator builds its
     // spectrum on the plan's padding.
-    let spectrum = surface_kernel(&body, &grid, &plan, f64::INFINITY).unwrap();
+    let spectrum = surface_kernel(&body, &grid, &plan, f64::INFINITY, true).unwrap();
     let kernel = coated_surface_kernel(coating, thickness, substrate, cell, nx, ny).unwrap();
     assert_eq!(spectrum.self_coefficient(), kernel[0]);
     // A fixed pseudo-random field (LCG), convolved both ways.

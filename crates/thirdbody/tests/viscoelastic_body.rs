@@ -339,11 +339,19 @@ fn friction_equals_the_power_dissipated_in_the_body() {
             "V tau / a0 {zeta}: energy imbalance {:.2e} {:.2e}",
             imbalance[0], imbalance[1]
         );
-        // Measured (64^2, 128^2): V tau / a0 = 1e-3: 0.97 %, 0.13 %; 1e-2: 0.39 %,
-        // 0.16 %; 0.1: 0.28 %, 0.059 %; 1: 0.081 %, 0.014 %; 10: 0.16 %, 0.012 %
-        // (with the exact kernel, before the leading-edge damping: 0.97 %, 0.23 %;
-        // 0.59 %, 0.22 %; 0.29 %, 0.061 %; 0.081 %, 0.014 %; 0.16 %, 0.012 %).
-        assert!(imbalance[1] < 5e-3, "zeta {zeta}: {imbalance:?}");
+        // Measured (64^2, 128^2): V tau / a0 = 1e-3: 1.44 %, 0.54 %; 1e-2: 0.39 %,
+        // 0.16 %; 0.1: 0.28 %, 0.059 %; 1: 0.081 %, 0.014 %; 10: 0.16 %, 0.012 %.
+        // At 1e-3 the creep length is half a cell on 128^2 and the solvers' kernel
+        // gives part of it to the gap as a lag: the friction is then within 0.06 %
+        // of the 512^2 solution, and the imbalance is the dissipation's own error
+        // (its bilinear pressure misses the square-root edge: 0.60 % low on 128^2,
+        // 0.07 % on 256^2). Before the lag both sides were low together there
+        // (0.97 %, 0.13 %): on 128^2 the friction by 0.32 %, the dissipation by
+        // 0.45 %; at V tau / a0 = 1e-4 the friction by 2.4 % (now +0.36 %). With
+        // the exact kernel, before the leading-edge damping: 0.97 %, 0.23 %; 0.59 %, 0.22 %;
+        // 0.29 %, 0.061 %; 0.081 %, 0.014 %; 0.16 %, 0.012 %.
+        let bound = if zeta < 1e-2 { 6e-3 } else { 5e-3 };
+        assert!(imbalance[1] < bound, "zeta {zeta}: {imbalance:?}");
         // Shrinking with the grid where the grid's error dominates; below 1e-3 the
         // dissipation's own quadrature (1e-4) and the windows' placement decide.
         assert!(
@@ -390,4 +398,192 @@ fn a_rubbers_glassy_ratio_converges_across_the_friction_maximum() {
         assert!(mu < 1e-3, "zeta {zeta}: {mu}");
         assert!(approach < 1e-3, "zeta {zeta}: {approach}");
     }
+}
+
+fn body_name(body: &Body) -> String {
+    match body {
+        Body::Viscoelastic(v) => format!("{:?}", v.rheology),
+        other => format!("{other:?}"),
+    }
+}
+
+/// Slow sliding, where every creep length lies far below the cell: the friction
+/// against its first-order closed form `mu = V sum_k J_k tau_k / (J_r R)` (`tau_k`
+/// the retardation times; `(E_g / E_0 - 1) V tau / R` for a Zener body of
+/// relaxation time tau), at speeds where the retardation length is 1e-3 a0 or
+/// less, so that the next order (a few tenths of `l / a`, as in Hunter's line
+/// contact) stays below 1e-3. Before the solvers' kernel gave such creep to the
+/// gap as a lag (`body::viscoelastic`, "creep shorter than a cell") the friction
+/// came out 5.5 % low on 64^2 and 2.6 % on 128^2, whatever the speed.
+#[test]
+fn slow_sliding_friction_is_the_first_order_closed_form() {
+    let three = Body::Viscoelastic(ViscoelasticHalfSpace {
+        rheology: SolidRheology::Prony {
+            glassy_compliance: 0.4,
+            branch_compliances: vec![0.3, 0.2, 0.1],
+            branch_times: vec![1.0, 0.1, 10.0],
+        },
+        poisson: 0.0,
+    });
+    // (body, V / a0, closed-form mu R / a0 per unit V / a0)
+    let cases = [
+        (zener(3.0, 1.0, 1.0, 0.0), 1e-4, 2.0),
+        (zener(10.0, 1.0, 1.0, 0.0), 1e-4, 9.0),
+        (zener(100.0, 1.0, 1.0, 0.0), 1e-5, 99.0),
+        (three, 1e-5, (0.3 * 1.0 + 0.2 * 0.1 + 0.1 * 10.0) / 1.0),
+    ];
+    let mut worst = [0.0f64; 2];
+    for (body, speed, slope) in cases {
+        for (g, cells) in [64, 128].into_iter().enumerate() {
+            let s = solve(&sliding(body.clone(), speed * A0, cells, None), &P)
+                .unwrap()
+                .summary();
+            let expected = slope * speed * A0;
+            let e = s.friction_coefficient / expected - 1.0;
+            eprintln!(
+                "{:?} V/a0 {speed:e} {cells}^2: mu {e:+.2e}",
+                body_name(&body)
+            );
+            worst[g] = worst[g].max(e.abs());
+        }
+    }
+    eprintln!("worst: 64^2 {:.2e}, 128^2 {:.2e}", worst[0], worst[1]);
+    assert!(worst[0] < 1e-2 && worst[1] < 5e-3, "{worst:?}");
+}
+
+/// Where the solvers' kernel gave creep shorter than a cell to the gap, the
+/// solution gives it back: its body displacement is the exact steady-sliding kernel
+/// (`body::viscoelastic::steady_sliding_kernel`, summed directly here) applied to
+/// its pressure, the slider's shape is the slider's own, and the gap is
+/// `w_body + f - D`, zero on the contact. Zener E_g / E_0 = 10 at V tau / a0 = 1e-4
+/// (creep length 0.03 cells) on 48^2. The exact kernel's lag term on the cells cut
+/// by the contact's edge is the slope of the discrete displacement there, the
+/// first-order error the lag removes: those cells are compared apart.
+#[test]
+fn the_solution_gives_the_lag_back_to_the_body() {
+    let case = sliding(zener(10.0, 1.0, 1.0, 0.0), 1e-4 * A0, 48, None);
+    let s = solve(&case, &P).unwrap();
+    let g = s.grid;
+    let (nx, ny) = (g.nx(), g.ny());
+    let Body::Viscoelastic(solid) = &case.body else {
+        unreachable!()
+    };
+    let kernel = thirdbody::body::viscoelastic::steady_sliding_kernel(
+        &solid.model().creep,
+        g.cell(),
+        nx,
+        ny,
+        1e-4 * A0,
+    )
+    .unwrap();
+    let width = 2 * nx - 1;
+    let peak = s
+        .body_displacement
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let loaded = |i: i64, j: i64| {
+        (0..nx as i64).contains(&i)
+            && (0..ny as i64).contains(&j)
+            && s.pressure[j as usize * nx + i as usize] > 0.0
+    };
+    // Inside (the cell and its four neighbours loaded), outside (none loaded), and
+    // the cells between.
+    let mut worst = [0.0f64; 3];
+    let (mut worst_gap, mut worst_shape) = (0.0f64, 0.0f64);
+    for j in 0..ny {
+        for i in 0..nx {
+            let mut w = 0.0;
+            for l in 0..ny {
+                for k in 0..nx {
+                    let di = i as i64 - k as i64 + nx as i64 - 1;
+                    w += kernel[j.abs_diff(l) * width + di as usize] * s.pressure[l * nx + k];
+                }
+            }
+            let c = j * nx + i;
+            let (ii, jj) = (i as i64, j as i64);
+            let around = [
+                (ii, jj),
+                (ii + 1, jj),
+                (ii - 1, jj),
+                (ii, jj + 1),
+                (ii, jj - 1),
+            ];
+            let n_loaded = around.iter().filter(|&&(a, b)| loaded(a, b)).count();
+            let where_ = match n_loaded {
+                5 => 0,
+                0 => 1,
+                _ => 2,
+            };
+            worst[where_] = worst[where_].max((w - s.body_displacement[c]).abs() / peak);
+            let f = g.x(i).powi(2) / 2.0 + g.y(j).powi(2) / 2.0;
+            worst_shape = worst_shape.max((s.shape[c] - f).abs());
+            let gap = s.body_displacement[c] + s.shape[c] - s.approach;
+            worst_gap = worst_gap.max((gap - s.gap[c]).abs());
+            if s.pressure[c] > 0.0 {
+                worst_gap = worst_gap.max(s.gap[c].abs());
+            }
+        }
+    }
+    eprintln!(
+        "body displacement against the exact kernel's: inside {:.2e}, outside {:.2e}, \
+         at the edge {:.2e}; shape {:.2e}, gap {:.2e} of the peak displacement",
+        worst[0],
+        worst[1],
+        worst[2],
+        worst_shape / peak,
+        worst_gap / peak
+    );
+    // Against the lag's own size, c times the slider's largest slope on the contact
+    // (9e-4 of the peak here): without its return the difference outside was 1.2
+    // times it. Measured: 4 % inside, 2 % outside, 20 % on the edge's cells.
+    let lag = thirdbody::body::viscoelastic::creep_lag(&solid.model().creep, g.cell(), 1e-4 * A0);
+    let steepest = (0..nx * ny)
+        .filter(|&c| s.pressure[c] > 0.0)
+        .fold(0.0f64, |m, c| m.max(s.shape_slope[c].abs()));
+    let size = lag * steepest / peak;
+    eprintln!("lag {:.3e} a0, its size {size:.2e} of the peak", lag / A0);
+    assert!(
+        worst[0] < 0.1 * size && worst[1] < 0.1 * size,
+        "{worst:?} vs {size:e}"
+    );
+    assert!(worst[2] < 0.3 * size, "{worst:?} vs {size:e}");
+    assert!(worst_shape < 1e-12 * peak && worst_gap < 1e-9 * peak);
+}
+
+/// With a layer between the slider and the body the body's displacement on the
+/// contact is not the slider's shape, so the lag that the solvers' kernel gives to
+/// the gap would be wrong there: a problem with a layer keeps the body's whole
+/// creep in its kernel, the same problem without one gives it to the gap.
+#[test]
+fn a_layer_on_the_body_keeps_the_whole_creep_in_the_kernel() {
+    let mut case = sliding(zener(10.0, 1.0, 1.0, 0.0), 1e-4 * A0, 32, None);
+    let grid = Grid::centred(32, 32, 2.5 * A0 / 32.0, [0.0, 0.0]).unwrap();
+    let mut kernels = KernelCache::new();
+    let bare = case
+        .assemble(&grid, &mut kernels, Parallelism::Rayon)
+        .unwrap();
+    assert!(bare.body_lag());
+    let lag = thirdbody::body::viscoelastic::creep_lag(
+        &match &case.body {
+            Body::Viscoelastic(v) => v.model().creep,
+            _ => unreachable!(),
+        },
+        grid.cell(),
+        1e-4 * A0,
+    );
+    // 0.9 of the creep length V tau_c = 1e-3 a0.
+    assert!((lag / (0.9e-3 * A0) - 1.0).abs() < 1e-12, "{lag}");
+    case.layer = Some(cases::paper_sigmoid_layer());
+    let layered = case
+        .assemble(&grid, &mut kernels, Parallelism::Rayon)
+        .unwrap();
+    assert!(!layered.body_lag());
+    // The slider's height is read at f - lag f' only without the layer.
+    let moved = bare
+        .shape()
+        .iter()
+        .zip(layered.shape())
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let steepest = layered.slope().iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    assert!((moved / (lag * steepest) - 1.0).abs() < 1e-9, "{moved}");
 }

@@ -29,6 +29,7 @@ impl BodyModel for HomogeneousHalfSpace {
         nx: usize,
         ny: usize,
         _velocity: f64,
+        _lag: bool,
     ) -> Result<SurfaceKernel> {
         Ok(SurfaceKernel::Even {
             quadrant: homogeneous_surface_kernel_quadrant(self.material, cell, nx, ny),
@@ -42,6 +43,7 @@ impl BodyModel for HomogeneousHalfSpace {
         nx: usize,
         _velocity: f64,
         reference: f64,
+        _lag: bool,
     ) -> Result<SurfaceKernel> {
         let compliance = 1.0 / self.material.plane_strain_modulus();
         Ok(SurfaceKernel::Even {

@@ -94,13 +94,17 @@ impl SurfaceKernel {
 /// A body as the solvers and the stress sections see it.
 pub trait BodyModel: std::fmt::Debug + Send + Sync {
     /// The surface influence kernel on `nx x ny` square cells of side `cell` when
-    /// the slider moves at `velocity` (`+inf` allowed) in +x.
+    /// the slider moves at `velocity` (`+inf` allowed) in +x. With `lag` the slider
+    /// bears on the body directly, and the kernel may leave out a lag of the
+    /// displacement that the gap takes instead ([`BodyModel::creep_shift`]);
+    /// without, it carries the body's whole response (a layer lies between).
     fn surface_kernel(
         &self,
         cell: f64,
         nx: usize,
         ny: usize,
         velocity: f64,
+        lag: bool,
     ) -> Result<SurfaceKernel>;
     /// The plane-strain (line contact) surface kernel on `nx` cells of width `cell`
     /// along x, each loaded uniformly along y, when the slider moves at `velocity`
@@ -109,16 +113,28 @@ pub trait BodyModel: std::fmt::Debug + Send + Sync {
     /// displacement is measured against the surface at distance `reference` from
     /// the load for the body's long-wave (relaxed) compliance ([`mod@line`]); a body on
     /// a rigid base has no long-wave compliance and is measured from the base.
+    /// `lag` as for [`BodyModel::surface_kernel`].
     fn line_kernel(
         &self,
         cell: f64,
         nx: usize,
         velocity: f64,
         reference: f64,
+        lag: bool,
     ) -> Result<SurfaceKernel>;
     /// Whether the surface kernel depends on the sliding speed (a cache of kernels
     /// keys on the speed then).
     fn kernel_depends_on_velocity(&self) -> bool;
+    /// The distance `c` by which the solvers read the slider's height upstream, at
+    /// `f - c df/dx`, on cells of side `cell` at `velocity`, for the kernels built
+    /// with `lag`: a viscoelastic body's kernel gives its creep shorter than a cell
+    /// to the gap as this lag ([`viscoelastic`] module documentation, "creep shorter
+    /// than a cell"). 0 (the default) for a body whose kernel carries its whole
+    /// response.
+    fn creep_shift(&self, cell: f64, velocity: f64) -> f64 {
+        let _ = (cell, velocity);
+        0.0
+    }
     /// Whether the surface kernel at `velocity` is even in x, which makes the
     /// contact operator symmetric (conjugate gradients then apply).
     fn kernel_is_even(&self, velocity: f64) -> bool;
@@ -181,15 +197,16 @@ pub fn surface_kernel(
     grid: &Grid,
     plan: &Arc<ConvolutionPlan>,
     velocity: f64,
+    lag: bool,
 ) -> Result<KernelSpectrum> {
     let model = body.model();
     let (kernel, shift) = match grid.geometry() {
         Geometry::Point => (
-            model.surface_kernel(grid.cell(), grid.nx(), grid.ny(), velocity)?,
+            model.surface_kernel(grid.cell(), grid.nx(), grid.ny(), velocity, lag)?,
             0.0,
         ),
         Geometry::Line { datum } => {
-            lowered(model.line_kernel(grid.cell(), grid.nx(), velocity, datum)?)
+            lowered(model.line_kernel(grid.cell(), grid.nx(), velocity, datum, lag)?)
         }
     };
     let spectrum = match kernel {

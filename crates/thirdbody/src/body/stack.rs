@@ -117,6 +117,7 @@ impl BodyModel for StackBody {
         nx: usize,
         ny: usize,
         _velocity: f64,
+        _lag: bool,
     ) -> Result<super::SurfaceKernel> {
         Ok(super::SurfaceKernel::Even {
             quadrant: StackBody::surface_kernel_quadrant(self, cell, nx, ny)?,
@@ -130,6 +131,7 @@ impl BodyModel for StackBody {
         nx: usize,
         _velocity: f64,
         reference: f64,
+        _lag: bool,
     ) -> Result<super::SurfaceKernel> {
         Ok(super::SurfaceKernel::Even {
             quadrant: super::stack_line::line_kernel(&self.stack, cell, nx, reference)?,

@@ -821,6 +821,41 @@ fn gap_at(problem: &mut ContactProblem, p: &[f64], approach: f64) -> Vec<f64> {
     gap
 }
 
+/// The slider's own height, and the body's displacement `wb` (from the solvers'
+/// kernel) with the lag `c` of a viscoelastic body's creep shorter than a cell
+/// given back (`ContactProblem::creep_shift`: the solvers read the slider at `f - c
+/// f'`): the displacement gains `c` times its slope along x, which on the contact
+/// is the slider's, `-f'` (so the gap there stays the solver's), and elsewhere its
+/// central difference (one-sided at the window's ends).
+fn give_back_lag(problem: &ContactProblem, p: &[f64], wb: &mut [f64]) -> Vec<f64> {
+    let c = problem.creep_shift;
+    let mut shape = problem.shape.clone();
+    if c == 0.0 {
+        return shape;
+    }
+    let nx = problem.grid.nx;
+    let h = problem.grid.cell;
+    let solvers = wb.to_vec();
+    for (k, (w, f)) in wb.iter_mut().zip(shape.iter_mut()).enumerate() {
+        let (i, row) = (k % nx, &solvers[k - k % nx..k - k % nx + nx]);
+        let d = problem.slope[k];
+        *f += c * d;
+        let slope = if p[k] > 0.0 {
+            -d
+        } else if nx == 1 {
+            0.0
+        } else if i == 0 {
+            (row[1] - row[0]) / h
+        } else if i == nx - 1 {
+            (row[i] - row[i - 1]) / h
+        } else {
+            (row[i + 1] - row[i - 1]) / (2.0 * h)
+        };
+        *w += c * slope;
+    }
+    shape
+}
+
 /// Clips round-off negatives, restores the load exactly and computes every field.
 fn finish(
     problem: &mut ContactProblem,
@@ -870,8 +905,9 @@ fn finish(
             .dissipated_force(&grid, &mean, problem.velocity)?
     };
     let dissipated_force = layer_dissipated_force + body_dissipated_force;
+    let shape = give_back_lag(problem, &p, &mut wb);
     let gap: Vec<f64> = (0..n)
-        .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + problem.shape[k] - report.approach)
+        .map(|k| wb[k] + wl.as_ref().map_or(0.0, |w| w[k]) + shape[k] - report.approach)
         .collect();
     // A line contact's kernel was lowered by a constant (its datum): the body's
     // displacement and the approach at the case's datum are higher by it times the
@@ -883,6 +919,7 @@ fn finish(
     };
     wb.iter_mut().for_each(|w| *w += lift);
     let approach = report.approach + lift;
+
     if !p.iter().chain(&gap).all(|v| v.is_finite()) {
         return Err(Error::OutOfRange {
             why: OVERFLOW.into(),
@@ -897,7 +934,7 @@ fn finish(
         layer_displacement: wl,
         compliance,
         gap,
-        shape: problem.shape.clone(),
+        shape,
         shape_slope: problem.slope.clone(),
         dissipated_force,
         approach,

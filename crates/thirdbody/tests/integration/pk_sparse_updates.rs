@@ -58,7 +58,13 @@ fn solve_on(case: &Case, grid: &Grid, allow_sparse: bool) -> (Solution, usize) {
         .plan(grid.nx(), grid.ny(), params.parallelism)
         .unwrap();
     let spectrum = kernels
-        .surface_spectrum(&case.body, grid, &plan, case.velocity())
+        .surface_spectrum(
+            &case.body,
+            grid,
+            &plan,
+            case.velocity(),
+            case.layer.is_none(),
+        )
         .unwrap();
     let shape = case
         .assemble(grid, &mut kernels, params.parallelism)
