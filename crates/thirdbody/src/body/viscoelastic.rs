@@ -134,16 +134,19 @@
 //! the friction of a Zener sphere at V tau / a0 = 1e-4 came out 2.6 % low on 128^2,
 //! 5.5 % on 64^2, an error first order in the cell that does not fade as the speed
 //! falls. On the contact, though, the displacement is the gap's, so its slope is
-//! known: `J_a W' = -f' - sum_b (J_b / l_b) (E_b - 1) W` (differentiating the
-//! contact condition, `E_b` the exponential average of a branch that stays in the
-//! kernel, whose derivative is `(E_b - 1) / l_b`; `J_a` the glassy compliance plus
-//! the sub-cell branches'). The solvers' kernel therefore takes each branch's part
+//! known: `J_d W' = -f' - sum_b (J_b / l_b) (E_b - 1) W` (differentiating the
+//! contact condition; `E_b` the exponential average of a branch creeping over more
+//! than 2 cells, whose derivative is `(E_b - 1) / l_b`; `J_d` the glassy compliance
+//! plus every branch creeping over less, whose average is the identity to first
+//! order in `l / a`). The solvers' kernel therefore takes each branch's part
 //! `w(lambda) J_k` as relaxed compliance and moves its lag `sum w J_k l_k` into the
-//! gap: the slider's height is read at `f - c f'` with `c = sum_k w_k J_k l_k / J_a`
-//! ([`BodyModel::creep_shift`]), and each retained part `(1 - w_k) J_k` becomes
-//! `(1 - w_k) J_k (1 - c / l_k)` of its exact branch kernel plus `(1 - w_k) J_k c /
-//! l_k` of the elastic one. The weight `w` is 1 below `lambda = 0.05` cells, 0 above
-//! 2 cells, and a smooth step in `ln lambda` between: there the exact kernel's error
+//! gap: the slider's height is read at `f - c f'` with `c = sum_k w_k J_k l_k / J_d`
+//! ([`BodyModel::creep_shift`]); the remaining part `(1 - w_k) J_k` keeps its exact
+//! kernel, and a branch beyond 2 cells, `J_b E_b`, becomes `J_b (1 - c / l_b)` of
+//! its exact kernel plus `J_b c / l_b` of the elastic one (its part of the slope;
+//! `c` is below 2 cells, so the first weight is positive). The weight `w` is 1
+//! below `lambda = 0.05` cells, 0 above 2 cells, and a smooth step in `ln lambda`
+//! between: there the exact kernel's error
 //! (first order, falling as lambda grows: -2.6 %, -1.4 %, -0.4 %, -0.2 % in that
 //! friction at lambda = 0.02, 0.16, 0.5, 1.6 on 128^2) and the lag's (second order
 //! in `l / a`, from the leading edge, where the material has not yet been loaded:
