@@ -7,7 +7,10 @@
 //! kernel quadrature and its own active-set GMRES solver); the solver is chosen
 //! from the body (never conjugate gradients on its non-symmetric operator); the
 //! stresses do not depend on the modulus, so the elastic stress kernels apply; the
-//! friction equals the power dissipated in the body (energy balance).
+//! friction equals the power dissipated in the body (energy balance); in slow
+//! sliding the friction is its first-order closed form, where the solvers' kernel
+//! gives creep shorter than a cell to the gap as a lag, which the solution gives
+//! back to the body's displacement and which a layer on the body turns off.
 
 mod cases;
 
