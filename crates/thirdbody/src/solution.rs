@@ -246,12 +246,15 @@ impl Solution {
         for j in 0..g.ny {
             for i in 0..g.nx {
                 let k = g.index(i, j);
-                let p = self.pressure[k];
                 if centre[k] > pmax {
                     pmax = centre[k];
                     kmax = k;
                 }
-                if p > 0.0 {
+                // A cell carries load where its mean is positive: a contact's edge
+                // located inside it can leave its centre value at 0 (the edge
+                // between the centre and the loaded face) while the part beyond
+                // the edge is loaded.
+                if self.pressure[k] > 0.0 || mean[k] > 0.0 {
                     count += 1;
                     let (x, y) = (g.x(i), g.y(j));
                     xmin = xmin.min(x - 0.5 * g.cell);
