@@ -138,13 +138,15 @@ impl KernelCache {
         velocity: f64,
         lag: bool,
     ) -> Result<Arc<KernelSpectrum>> {
+        let model = body.model();
+        // With no lag to leave out, both kernels are the same: one key for them.
+        let lag = lag && model.creep_shift(grid.cell, velocity) != 0.0;
         let key = SpectrumKey {
             body: body.clone(),
             cells: [grid.nx, grid.ny],
             cell_bits: grid.cell.to_bits(),
             geometry: grid.geometry(),
-            velocity_bits: body
-                .model()
+            velocity_bits: model
                 .kernel_depends_on_velocity()
                 .then_some(velocity.to_bits()),
             lag,

@@ -833,25 +833,28 @@ fn give_back_lag(problem: &ContactProblem, p: &[f64], wb: &mut [f64]) -> Vec<f64
     if c == 0.0 {
         return shape;
     }
-    let nx = problem.grid.nx;
-    let h = problem.grid.cell;
-    let solvers = wb.to_vec();
-    for (k, (w, f)) in wb.iter_mut().zip(shape.iter_mut()).enumerate() {
-        let (i, row) = (k % nx, &solvers[k - k % nx..k - k % nx + nx]);
-        let d = problem.slope[k];
-        *f += c * d;
-        let slope = if p[k] > 0.0 {
-            -d
-        } else if nx == 1 {
-            0.0
-        } else if i == 0 {
-            (row[1] - row[0]) / h
-        } else if i == nx - 1 {
-            (row[i] - row[i - 1]) / h
-        } else {
-            (row[i + 1] - row[i - 1]) / (2.0 * h)
-        };
-        *w += c * slope;
+    let (nx, h) = (problem.grid.nx, problem.grid.cell);
+    shape
+        .iter_mut()
+        .zip(&problem.slope)
+        .for_each(|(f, d)| *f += c * d);
+    for (j, row) in wb.chunks_exact_mut(nx).enumerate() {
+        let solvers = row.to_vec();
+        for (i, w) in row.iter_mut().enumerate() {
+            let k = j * nx + i;
+            let slope = if p[k] > 0.0 {
+                -problem.slope[k]
+            } else if nx == 1 {
+                0.0
+            } else if i == 0 {
+                (solvers[1] - solvers[0]) / h
+            } else if i == nx - 1 {
+                (solvers[i] - solvers[i - 1]) / h
+            } else {
+                (solvers[i + 1] - solvers[i - 1]) / (2.0 * h)
+            };
+            *w += c * slope;
+        }
     }
     shape
 }
@@ -919,7 +922,6 @@ fn finish(
     };
     wb.iter_mut().for_each(|w| *w += lift);
     let approach = report.approach + lift;
-
     if !p.iter().chain(&gap).all(|v| v.is_finite()) {
         return Err(Error::OutOfRange {
             why: OVERFLOW.into(),
