@@ -231,9 +231,11 @@ fn creep_lengths_from_a_hundredth_of_a_cell_to_ten_cells_give_the_row_friction()
     // creep length is shorter than it; the layer reconstructs the forcing linearly
     // in each cell and integrates the branch exactly. Kelvin–Voigt and Zener layers
     // on the 128^2 window of the row solution (contact half-length about 53 cells),
-    // V tau / h = 0.01, 0.1, 1 and 10. Measured mu errors: 0.68 %, 0.72 %, 0.49 %,
-    // 0.080 % (Kelvin–Voigt), first order in h below a creep length of a cell, but
-    // small since both ends of each row are located inside their cells
+    // V tau / h = 0.01, 0.1, 1 and 10. Measured mu errors: Kelvin–Voigt 0.068 %,
+    // 0.057 %, 0.35 %, 0.072 %; Zener 0.016 %, 0.015 %, 0.028 %, 0.019 %. Before the
+    // last loaded cell of each row took the one-sided slope of its forcing (its
+    // downstream neighbour is unloaded), 0.68 %, 0.72 %, 0.49 %, 0.080 % and 0.58 %,
+    // 0.60 %, 0.054 %, 0.020 %: first order in h below a creep length of a cell
     // (docs/validation.md).
     let q = 5e-6;
     for (name, rheology, reference) in [
@@ -247,7 +249,7 @@ fn creep_lengths_from_a_hundredth_of_a_cell_to_ten_cells_give_the_row_friction()
         }),
     ] {
         for (cells_per_creep_length, tolerance) in
-            [(100.0, 0.01), (10.0, 0.01), (1.0, 0.01), (0.1, 2e-3)]
+            [(100.0, 2e-3), (10.0, 2e-3), (1.0, 6e-3), (0.1, 2e-3)]
         {
             // The window's cell at a first guess of the contact, then V from it.
             let guess = reference(1e-6);
