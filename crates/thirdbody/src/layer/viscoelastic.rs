@@ -258,8 +258,10 @@ const EXIT_TOLERANCE: f64 = 1e-2;
 /// Shift, in cells, within which an edge that passed a cell's centre has not
 /// moved: where an edge lies at a centre, the solves alternate between that cell
 /// barely loaded and its neighbour entered a full cell from the edge, the same
-/// contact to within the shift.
-const CENTRE_CROSSING: f64 = 0.05;
+/// contact to within the shift. (0.05 until the last loaded cell before a trailing
+/// edge took the one-sided slope, which widened the alternation of such an edge to
+/// 0.055 cells: a Zener layer at V tau / h = 0.1 then ran all its relocations.)
+const CENTRE_CROSSING: f64 = 0.1;
 
 /// Where, in cells upstream of a centre whose free gap is `here <= 0`, the free gap
 /// reaches zero on its way to `next > 0` one cell upstream: on the parabola through
@@ -1473,16 +1475,19 @@ impl ViscoelasticRows {
         let mut diagonal = vec![0.0; n];
         let mut flow_slope = vec![0.0; n];
         let mut forcing_slope = vec![0.0; n];
+        let mut forcing = vec![0.0; n];
         // Cell by cell (the law's evaluations are the cost), in chunks.
         diagonal
             .par_chunks_mut(CHUNK)
             .zip(flow_slope.par_chunks_mut(CHUNK))
             .zip(forcing_slope.par_chunks_mut(CHUNK))
+            .zip(forcing.par_chunks_mut(CHUNK))
             .zip(p.par_chunks(CHUNK))
             .with_min_len(self.passes.min_len())
-            .for_each(|(((diagonal, flow_slope), forcing_slope), p)| {
+            .for_each(|((((diagonal, flow_slope), forcing_slope), forcing), p)| {
                 for (k, &pk) in p.iter().enumerate() {
-                    let ((_, df), (_, dq)) = self.forcing_and_creep(pk);
+                    let ((f, df), (_, dq)) = self.forcing_and_creep(pk);
+                    forcing[k] = f;
                     flow_slope[k] = self.flow_per_cell * dq;
                     forcing_slope[k] = df;
                     let retarded = self.branch_own * df;
@@ -1561,7 +1566,6 @@ impl ViscoelasticRows {
         let trailing: Vec<bool> = if self.branches.is_empty() {
             Vec::new()
         } else {
-            let forcing: Vec<f64> = p.iter().map(|&v| self.forcing_and_creep(v).0 .0).collect();
             (0..n)
                 .map(|k| {
                     let i = k % self.nx;
