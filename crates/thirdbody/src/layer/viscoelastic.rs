@@ -2432,19 +2432,34 @@ mod tests {
         }
     }
 
+    /// The two-branch Prony layer with a flow under a sigmoid law.
+    fn sigmoid_prony_with_flow() -> Layer {
+        prony(
+            ComplianceLaw::Sigmoid {
+                delta: 0.6,
+                p0: 0.002,
+            },
+            Integration::Exact,
+            Some(30.0),
+        )
+    }
+
+    /// `J y` less the entries above the diagonal (the downstream neighbour's share
+    /// of a branch's slope), which the preconditioner leaves out; rows of `nx`.
+    fn lower_product(jac: &ViscoelasticJacobian, nx: usize, y: &[f64], out: &mut [f64]) {
+        jac.apply(y, out);
+        for k in (0..y.len()).filter(|k| k % nx > 0) {
+            out[k] +=
+                jac.above_diagonal_share(k) * jac.lag_half * jac.forcing_slope[k - 1] * y[k - 1];
+        }
+    }
+
     #[test]
     fn jacobian_matches_finite_differences_and_inverts() {
         let layers = [
             sigmoid(0.8, 0.002, Integration::Exact),
             sigmoid(0.8, 0.002, Integration::Secant),
-            prony(
-                ComplianceLaw::Sigmoid {
-                    delta: 0.6,
-                    p0: 0.002,
-                },
-                Integration::Exact,
-                Some(30.0),
-            ),
+            sigmoid_prony_with_flow(),
             prony(
                 ComplianceLaw::Sigmoid {
                     delta: 0.6,
@@ -2460,19 +2475,7 @@ mod tests {
             let jac = op.jacobian(&p);
             let dp: Vec<f64> = (0..12).map(|k| ((k * 3) % 4) as f64 - 1.5).collect();
             assert_jacobian_is_the_derivative(&op, &jac, &p, &dp);
-            // J less its one entry above the diagonal (the downstream neighbour's
-            // share of a branch's centred slope), which the preconditioner leaves out.
-            let lower = |y: &[f64], out: &mut [f64]| {
-                jac.apply(y, out);
-                for k in 0..12 {
-                    if k % 6 > 0 {
-                        out[k] += jac.above_diagonal_share(k)
-                            * jac.lag_half
-                            * jac.forcing_slope[k - 1]
-                            * y[k - 1];
-                    }
-                }
-            };
+            let lower = |y: &[f64], out: &mut [f64]| lower_product(&jac, 6, y, out);
             // The restricted triangular solve inverts that on all-active cells ...
             let active = vec![true; 12];
             let mut y = vec![0.0; 12];
@@ -2532,14 +2535,7 @@ mod tests {
         for layer in [
             linear_kelvin_voigt(0.02, 1.0),
             prony(ComplianceLaw::Linear, Integration::Exact, None),
-            prony(
-                ComplianceLaw::Sigmoid {
-                    delta: 0.6,
-                    p0: 0.002,
-                },
-                Integration::Exact,
-                Some(30.0),
-            ),
+            sigmoid_prony_with_flow(),
         ] {
             let op = ViscoelasticRows::new(layer, nx, 1, 0.1, 0.05);
             let p = [0.01, 0.05, 0.3, 1.0, 1.6, 2.0, 1.5, 0.9].map(|x| 1e-3 * x);
@@ -2551,18 +2547,9 @@ mod tests {
             let dp: Vec<f64> = (0..nx).map(|k| ((k * 3) % 4) as f64 - 1.5).collect();
             assert_jacobian_is_the_derivative(&op, &jac, &p, &dp);
             // The preconditioner inverts J less its entries above the diagonal.
-            let lower = |y: &[f64], out: &mut [f64]| {
-                jac.apply(y, out);
-                for k in 1..nx {
-                    out[k] += jac.above_diagonal_share(k)
-                        * jac.lag_half
-                        * jac.forcing_slope[k - 1]
-                        * y[k - 1];
-                }
-            };
             let mut y = vec![0.0; nx];
             let mut lower_dp = vec![0.0; nx];
-            lower(&dp, &mut lower_dp);
+            lower_product(&jac, nx, &dp, &mut lower_dp);
             jac.solve_restricted(0.0, &[true; 8], &lower_dp, &mut y);
             for k in 0..nx {
                 assert!((y[k] - dp[k]).abs() < 1e-9, "{k}: {} {}", y[k], dp[k]);
@@ -2609,14 +2596,7 @@ mod tests {
             integration: Integration::Exact,
         };
         let layers = [
-            prony(
-                ComplianceLaw::Sigmoid {
-                    delta: 0.6,
-                    p0: 0.002,
-                },
-                Integration::Exact,
-                Some(30.0),
-            ),
+            sigmoid_prony_with_flow(),
             prony(ComplianceLaw::Linear, Integration::Secant, None),
             kelvin_voigt,
         ];
