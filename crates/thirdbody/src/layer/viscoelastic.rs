@@ -1286,9 +1286,9 @@ impl ViscoelasticRows {
                 }
             } else {
                 // Upstream of an entry cell the forcing is zero up to the edge: the
-                // slope does not reach across it.
-                // Where the forcing falls to zero within this cell (a trailing
-                // edge), the slope is the loaded side's (module docs).
+                // slope does not reach across it. Where the forcing falls to zero
+                // within this cell (a trailing edge), the slope is the loaded
+                // side's (module docs).
                 let downstream_forcing = if i > 0 && entry(i - 1) > 0.0 {
                     0.0
                 } else if i > 0 {
