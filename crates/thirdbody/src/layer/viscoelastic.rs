@@ -40,7 +40,7 @@
 //!   less than the sum of the two lower values, nothing changes; and the forcing
 //!   stays continuous as cells load and unload (a switch on the neighbour's load
 //!   made the contact problem discontinuous, and an active-set solve cycled). Then
-//!   0.02 % and 1.3 % (docs/validation.md).
+//!   0.02-0.07 % and 1.3 % (docs/validation.md).
 //!
 //! The exact centre value has, for a branch without a glassy spring in series, an
 //! undamped odd–even mode: imposing `w_i` at the centre fixes each cell's pressure
