@@ -305,6 +305,26 @@ fn trailing_correction(downstream: f64, here: f64, upstream: f64) -> f64 {
     (downstream + 2.0 * here - upstream).min(0.0)
 }
 
+/// The downstream forcing in the slope of cell `i` of a row (not an entry cell),
+/// and whether [`trailing_correction`] is in it: the row's first cell has none
+/// beyond the window; upstream of an entry cell the forcing is zero up to the edge,
+/// so the slope does not reach across it; elsewhere the neighbour's forcing plus
+/// the trailing correction. The sweep and the Jacobian both decide here.
+fn slope_downstream(
+    i: usize,
+    entry_below: f64,
+    below: f64,
+    here: f64,
+    upstream: f64,
+) -> (f64, bool) {
+    if i == 0 || entry_below > 0.0 {
+        (0.0, false)
+    } else {
+        let correction = trailing_correction(below, here, upstream);
+        (below + correction, correction < 0.0)
+    }
+}
+
 /// Whether `e` is a leading edge (its loaded neighbour downstream, at -x).
 fn leading(e: &ContactEdge) -> bool {
     e.neighbour.is_none_or(|n| n < e.cell)
@@ -1285,17 +1305,9 @@ impl ViscoelasticRows {
                     }
                 }
             } else {
-                // Upstream of an entry cell the forcing is zero up to the edge: the
-                // slope does not reach across it. Where the forcing falls to zero
-                // within this cell (a trailing edge), the slope is the loaded
-                // side's (module docs).
-                let downstream_forcing = if i > 0 && entry(i - 1) > 0.0 {
-                    0.0
-                } else if i > 0 {
-                    next_forcing + trailing_correction(next_forcing, f, upstream_forcing)
-                } else {
-                    next_forcing
-                };
+                let entry_below = if i > 0 { entry(i - 1) } else { 0.0 };
+                let (downstream_forcing, _) =
+                    slope_downstream(i, entry_below, next_forcing, f, upstream_forcing);
                 let rise = upstream_forcing - downstream_forcing;
                 for (b, e) in self.branches.iter().zip(state.iter_mut()) {
                     let force = b.scale * f;
@@ -1558,8 +1570,8 @@ impl ViscoelasticRows {
                 diagonal[k - 1] += entry_flow_weights(theta, true, rise).1 * flow_slope[k - 1];
             }
         }
-        // Cells whose slope takes the trailing correction (as the sweep decides:
-        // not upstream of an entry cell, not a row's last cell). There the
+        // Cells whose slope takes the trailing correction (`slope_downstream`, as
+        // in the sweep; entry cells have no slope term). There the
         // slope's downstream forcing is `2 F_{i-1} + 2 F_i - F_{i+1}`: the cell's
         // own forcing enters its centre value through `- 2 lag_half`, and the
         // downstream neighbour's enters this cell's exit value twice.
@@ -1575,10 +1587,13 @@ impl ViscoelasticRows {
                     } else {
                         0.0
                     };
-                    i > 0
-                        && entries.get(k - 1).copied().unwrap_or(0.0) <= 0.0
-                        && entries.get(k).copied().unwrap_or(0.0) <= 0.0
-                        && trailing_correction(forcing[k - 1], forcing[k], upstream) < 0.0
+                    let (entry_below, below) = if i > 0 {
+                        (entries.get(k - 1).copied().unwrap_or(0.0), forcing[k - 1])
+                    } else {
+                        (0.0, 0.0)
+                    };
+                    entries.get(k).copied().unwrap_or(0.0) <= 0.0
+                        && slope_downstream(i, entry_below, below, forcing[k], upstream).1
                 })
                 .collect()
         };
