@@ -9,6 +9,7 @@
 mod cases;
 
 use std::f64::consts::PI;
+use thirdbody::body::layered::{Base, BaseContact, Ply, Stack};
 use thirdbody::*;
 
 const LOAD: f64 = 1e-3;
@@ -56,6 +57,65 @@ fn coated_line_contacts_reach_hertz_in_their_limits() {
             errors.0.abs() < 2e-3 && errors.1.abs() < 2e-3,
             "{name}: {errors:?}"
         );
+    }
+}
+
+/// A cylinder on a thin compressible layer bonded to a rigid base, against the
+/// published thin-layer limit: Kalker's first-order (Winkler) theory, `w = L_z p`
+/// with `L_z = t (1 + nu) (1 - 2 nu) / ((1 - nu) E)` (J. J. Kalker, Three-Dimensional
+/// Elastic Bodies in Rolling Contact, Kluwer, 1990, section 3.2, as quoted in the
+/// CONTACT user guide, "Compressible elastic layer", github.com/eve70a/CONTACT,
+/// doc/user-guide.tex). Under a cylinder of radius R such a foundation carries
+/// `p = (delta - x^2 / (2 R)) / L_z` on `|x| < a`, so `a^3 = 3 Q R L_z / 2` and
+/// `p0 = a^2 / (2 R L_z)`. The layer's own shear spreads the load over about its
+/// thickness t: the peak differs by O((t / a)^2), the half-width (set where the
+/// pressure vanishes, inside a boundary layer of width t) by O(t / a).
+#[test]
+fn a_thin_bonded_layer_on_a_rigid_base_carries_a_cylinder_as_kalkers_foundation() {
+    let (young, poisson, radius) = (1.0, 0.3, 1.0f64);
+    let a_winkler: f64 = 2e-3;
+    let mut previous_peak_error: Option<f64> = None;
+    for ratio in [0.02, 0.01, 0.005] {
+        let thickness = ratio * a_winkler;
+        let flexibility =
+            thickness * (1.0 + poisson) * (1.0 - 2.0 * poisson) / ((1.0 - poisson) * young);
+        let load = a_winkler.powi(3) / (1.5 * radius * flexibility);
+        let p0_winkler = a_winkler * a_winkler / (2.0 * radius * flexibility);
+        let mut case = cases::cylinder(load, 4096);
+        case.body = Body::Layered(Stack {
+            layers: vec![Ply {
+                material: Elastic { young, poisson },
+                thickness,
+            }],
+            base: Base::Rigid(BaseContact::Bonded),
+        });
+        let solution = solve(&case, &SolverParams::default()).unwrap();
+        let m = solution.summary();
+        let half_width = 0.5 * (m.contact_x_max - m.contact_x_min);
+        let width_error = half_width / a_winkler - 1.0;
+        let peak_error = m.max_pressure / p0_winkler - 1.0;
+        let cell = m.cell_size / a_winkler;
+        eprintln!(
+            "t / a = {ratio}: half-width {width_error:+.2e} (cell {cell:.1e} a), peak {peak_error:+.2e}"
+        );
+        // Measured: half-width -2.4e-3, -1.3e-3, -6.2e-4 (0.12 t / a plus the edge's
+        // place in its cell), peak -2.9e-5, -7.3e-6, -1.9e-6 (0.075 (t / a)^2).
+        assert!(
+            width_error.abs() < 0.2 * ratio + cell,
+            "t / a = {ratio}: half-width {width_error:+.2e}"
+        );
+        assert!(
+            peak_error.abs() < 0.15 * ratio * ratio,
+            "t / a = {ratio}: peak {peak_error:+.2e}"
+        );
+        if let Some(before) = previous_peak_error {
+            let order = (before / peak_error).log2();
+            assert!(
+                (1.6..2.4).contains(&order),
+                "t / a = {ratio}: the peak's error falls as (t / a)^{order:.2}"
+            );
+        }
+        previous_peak_error = Some(peak_error);
     }
 }
 
