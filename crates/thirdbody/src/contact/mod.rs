@@ -390,8 +390,14 @@ pub fn solve_with(
             other => other,
         })
     };
-    let solution = solve_on_windows(&scaled, params, kernels, &mut observe_in_case_units)
-        .map_err(|e| scales.unscaled_error(outside_the_model(&scaled, e)))?;
+    let solution = solve_on_windows(
+        &scaled,
+        params,
+        kernels,
+        &mut observe_in_case_units,
+        Settle::Edges,
+    )
+    .map_err(|e| scales.unscaled_error(outside_the_model(&scaled, e)))?;
     let solution = scales.unscaled_solution(solution, case.body.clone(), case.loading.normal_load);
     if let Some(name) = solution.summary().first_non_finite() {
         // Finite in the solver's units, so the case's units are what overflow: a
@@ -493,13 +499,27 @@ fn beyond_the_model_limit(
     }
 }
 
+/// Whether a solve places the contacts' leading edges inside their cells until they
+/// stay put ([`crate::layer::LayerResponse::relocated`]: several warm-started Newton
+/// solves), or stops at its first converged solution (a scout's, or a window's that
+/// may still be replaced).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Settle {
+    Edges,
+    FirstSolution,
+}
+
 /// [`solve_with`] in the solver's units: the windows of a case, from the first (its
-/// fixed one or the estimate's) to the one that holds the contact.
+/// fixed one or the estimate's) to the one that holds the contact. An automatic
+/// window's edges are settled only once it holds the contact: each relocation is a
+/// Newton solve, and a window that is replaced would spend them for nothing (a
+/// Prony layer's first window took 77 Newton steps settled, 35 not).
 fn solve_on_windows(
     case: &Case,
     params: &SolverParams,
     kernels: &mut KernelCache,
     observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    settle: Settle,
 ) -> Result<Solution> {
     let fixed = case.grid.half_width.is_some();
     let mut grid = window::initial_window(case)?;
@@ -527,24 +547,50 @@ fn solve_on_windows(
                 half_width_y: wy,
             });
         }
-        let mut solution = solve_problem(&mut problem, warm.as_ref(), params, observer)
+        let mut first = solve_unsettled(&mut problem, warm.as_ref(), params, observer)
             .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
-        solution.info.windows = attempt;
-        let touches = grid.touches_edge(&solution.pressure);
-        if fixed {
-            if touches {
-                let [wx, wy] = grid.half_widths();
-                return Err(Error::ContactAtWindowEdge {
-                    half_width_x: wx,
-                    half_width_y: wy,
-                });
+        let newton = first.method == Method::SemismoothNewton;
+        let mut contact: Vec<f64> = first.pressure.iter().map(|&v| v.max(0.0)).collect();
+        let mut next = (!fixed)
+            .then(|| window::next_window(&grid, &contact, grid.touches_edge(&contact)))
+            .flatten();
+        if newton && settle == Settle::Edges && next.is_none() {
+            // A window that holds the contact (or a fixed one): its edges settle.
+            first.report = settle_edges(
+                &mut problem,
+                &mut first.pressure,
+                first.report,
+                params,
+                observer,
+            )
+            .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
+            contact = first.pressure.iter().map(|&v| v.max(0.0)).collect();
+            if !fixed {
+                next = window::next_window(&grid, &contact, grid.touches_edge(&contact));
             }
-            return Ok(solution);
         }
-        match window::next_window(&grid, &solution.pressure, touches) {
-            None => return Ok(solution),
+        if fixed && grid.touches_edge(&contact) {
+            let [wx, wy] = grid.half_widths();
+            return Err(Error::ContactAtWindowEdge {
+                half_width_x: wx,
+                half_width_y: wy,
+            });
+        }
+        match next {
+            None => {
+                let mut solution = finish(
+                    &mut problem,
+                    first.pressure,
+                    first.method,
+                    first.report,
+                    params.tolerance,
+                )
+                .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
+                solution.info.windows = attempt;
+                return Ok(solution);
+            }
             Some(next) => {
-                warm = Some((grid, solution.pressure));
+                warm = Some((grid, contact));
                 grid = next;
             }
         }
@@ -591,8 +637,15 @@ fn scout(
     };
     let mut coarse = case.clone();
     coarse.grid.cells = [first.nx / factor, (first.ny / factor).max(1)];
-    let solution =
-        solve_on_windows(&coarse, params, kernels, &mut |_| ControlFlow::Continue(())).ok()?;
+    // The scout only places the window: its edges need not settle.
+    let solution = solve_on_windows(
+        &coarse,
+        params,
+        kernels,
+        &mut |_| ControlFlow::Continue(()),
+        Settle::FirstSolution,
+    )
+    .ok()?;
     let window = window::fit_to_contact(first.nx, first.ny, &solution.grid, &solution.pressure)?;
     Some((window, (solution.grid, solution.pressure)))
 }
@@ -606,6 +659,34 @@ pub fn solve_problem(
     params: &SolverParams,
     observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<Solution> {
+    let mut first = solve_unsettled(problem, warm, params, observer)?;
+    if first.method == Method::SemismoothNewton {
+        first.report = settle_edges(problem, &mut first.pressure, first.report, params, observer)?;
+    }
+    finish(
+        problem,
+        first.pressure,
+        first.method,
+        first.report,
+        params.tolerance,
+    )
+}
+
+/// A converged pressure before [`finish`], with how it was found.
+struct Converged {
+    pressure: Vec<f64>,
+    method: Method,
+    report: SolveReport,
+}
+
+/// [`solve_problem`] up to its first converged pressure, the contacts' edges where
+/// the warm start (or the cells' faces) put them.
+fn solve_unsettled(
+    problem: &mut ContactProblem,
+    warm: Option<&(Grid, Vec<f64>)>,
+    params: &SolverParams,
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+) -> Result<Converged> {
     let grid = problem.grid;
     let mut p = match warm {
         Some((old, old_p)) => window::interpolate(old, old_p, &grid, params.parallelism),
@@ -694,7 +775,7 @@ pub fn solve_problem(
             // A bare body that stalls is tried once more from the same start with a
             // softer contact-set rule (newton::SOFTER_ACTIVE_SET says when it helps).
             let start = problem.layer.is_none().then(|| p.clone());
-            let mut r = match newton::semismooth_newton(problem, &mut p, params, observer) {
+            let r = match newton::semismooth_newton(problem, &mut p, params, observer) {
                 Ok(r) => r,
                 Err(Error::Interrupted) => return Err(Error::Interrupted),
                 Err(e) => match (fallback, start) {
@@ -725,79 +806,95 @@ pub fn solve_problem(
                     (None, None) => return Err(e),
                 },
             };
-            // A layer whose response depends on where each contact's leading edge
-            // falls inside its cell is solved again with the edges of the last
-            // solution until they stay put.
-            for _ in 0..MAX_RELOCATIONS {
-                let gap = gap_at(problem, &p, r.approach);
-                let moved = problem.layer.as_ref().and_then(|l| l.relocated(&p, &gap));
-                let Some(layer) = moved else { break };
-                let placed = problem.layer.replace(layer);
-                let before = p.clone();
-                // Its iterations continue the count the summary reports.
-                let counted = |offset: usize| {
-                    move |progress: Progress| match progress {
-                        Progress::Iteration {
-                            iteration,
-                            residual,
-                        } => Progress::Iteration {
-                            iteration: iteration + offset,
-                            residual,
-                        },
-                        other => other,
-                    }
-                };
-                let offset = r.iterations;
-                let relabel = counted(offset);
-                let first = newton::semismooth_newton(problem, &mut p, params, &mut |progress| {
-                    observer(relabel(progress))
-                });
-                // A relocated solve that stalls is tried once more from the same
-                // start with the softer contact-set rule: the first relocation starts
-                // from the faces' solution, whose leading edges ring in slow
-                // sliding, and a sigmoid layer at V' = 1e-4 (paper Fig. 8, p0' =
-                // 0.0025) stalled there near a residual of 2e-5 and kept the ringing
-                // solution (energy balance 3 %); the retry converges.
-                let again = match first {
-                    Err(Error::NoConvergence { iterations, .. }) => {
-                        p = before.clone();
-                        let relabel = counted(offset + iterations);
-                        newton::semismooth_newton_scaled(
-                            problem,
-                            &mut p,
-                            params,
-                            &mut |progress| observer(relabel(progress)),
-                            newton::SOFTER_ACTIVE_SET,
-                        )
-                        .map(|mut again| {
-                            again.iterations += iterations;
-                            again
-                        })
-                    }
-                    other => other,
-                };
-                let again = match again {
-                    Ok(again) => again,
-                    Err(Error::Interrupted) => return Err(Error::Interrupted),
-                    Err(_) => {
-                        // The last converged solution stands, with its edges.
-                        problem.layer = placed;
-                        p = before;
-                        break;
-                    }
-                };
-                r.history.extend(again.history);
-                r = SolveReport {
-                    iterations: r.iterations + again.iterations,
-                    linear_iterations: r.linear_iterations + again.linear_iterations,
-                    history: r.history,
-                    ..again
-                };
-            }
             (Method::SemismoothNewton, r)
         }
     };
-    finish(problem, p, method, report, params.tolerance)
+    Ok(Converged {
+        pressure: p,
+        method,
+        report,
+    })
+}
+
+/// Solves `problem` again, from its converged pressure `p` and report `r`, with the
+/// contacts' leading edges located inside their cells from the last solution, until
+/// they stay put (a layer whose response depends on where each edge falls inside its
+/// cell; others return at once). Returns the report of the last solve, its counts
+/// summed with the earlier ones.
+fn settle_edges(
+    problem: &mut ContactProblem,
+    p: &mut Vec<f64>,
+    mut r: SolveReport,
+    params: &SolverParams,
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+) -> Result<SolveReport> {
+    for _ in 0..MAX_RELOCATIONS {
+        let gap = gap_at(problem, p, r.approach);
+        let moved = problem.layer.as_ref().and_then(|l| l.relocated(p, &gap));
+        let Some(layer) = moved else { break };
+        let placed = problem.layer.replace(layer);
+        let before = p.clone();
+        // Its iterations continue the count the summary reports.
+        let counted = |offset: usize| {
+            move |progress: Progress| match progress {
+                Progress::Iteration {
+                    iteration,
+                    residual,
+                } => Progress::Iteration {
+                    iteration: iteration + offset,
+                    residual,
+                },
+                other => other,
+            }
+        };
+        let offset = r.iterations;
+        let relabel = counted(offset);
+        let first = newton::semismooth_newton(problem, p, params, &mut |progress| {
+            observer(relabel(progress))
+        });
+        // A relocated solve that stalls is tried once more from the same
+        // start with the softer contact-set rule: the first relocation starts
+        // from the faces' solution, whose leading edges ring in slow
+        // sliding, and a sigmoid layer at V' = 1e-4 (paper Fig. 8, p0' =
+        // 0.0025) stalled there near a residual of 2e-5 and kept the ringing
+        // solution (energy balance 3 %); the retry converges.
+        let again = match first {
+            Err(Error::NoConvergence { iterations, .. }) => {
+                p.clone_from(&before);
+                let relabel = counted(offset + iterations);
+                newton::semismooth_newton_scaled(
+                    problem,
+                    p,
+                    params,
+                    &mut |progress| observer(relabel(progress)),
+                    newton::SOFTER_ACTIVE_SET,
+                )
+                .map(|mut again| {
+                    again.iterations += iterations;
+                    again
+                })
+            }
+            other => other,
+        };
+        let again = match again {
+            Ok(again) => again,
+            Err(Error::Interrupted) => return Err(Error::Interrupted),
+            Err(_) => {
+                // The last converged solution stands, with its edges.
+                problem.layer = placed;
+                *p = before;
+                break;
+            }
+        };
+        r.history.extend(again.history);
+        r = SolveReport {
+            iterations: r.iterations + again.iterations,
+            linear_iterations: r.linear_iterations + again.linear_iterations,
+            history: r.history,
+            ..again
+        };
+    }
+    Ok(r)
 }
 
 /// Most solves again with the contacts' leading edges located inside their cells
