@@ -154,3 +154,49 @@ fn a_near_incompressible_layer_on_a_rigid_base_carries_the_load_to_the_base() {
         }
     }
 }
+
+/// A sphere on two bonded coatings over a half-space, against the tri-layered
+/// contacts of Yu, Wang & Wang (Mech. Mater. 76, 102-120, 2014, section 3.3 and
+/// Fig. 6): R = 200 a0, coatings 0.5 a0 thick each, every Poisson ratio 0.3, a0 and
+/// P0 the Hertz radius and peak of the uncoated substrate. The paper's values, as
+/// quoted in the tests of another contact code (github.com/FrictionTribologyEnigma/
+/// slippy, commit 723b9332, `slippy/contact/tests/test_multilayer_material.py`; the
+/// paper itself was not reachable here): compliant coatings (E1 = 0.25, E2 = 0.5 E_sub)
+/// contact radius 1.373 a0 and peak 0.582 P0; stiff coatings (E1 = 4, E2 = 2 E_sub)
+/// contact radius 0.695 a0, the peak "almost doubled". The radius is read from the
+/// contact area, `sqrt(A / pi)`, on 128^2 cells (the default grid).
+#[test]
+fn two_coatings_under_a_sphere_match_yu_wang_and_wang() {
+    let a0: f64 = 0.005;
+    let radius = 200.0 * a0;
+    let e_star = SUBSTRATE.young / (1.0 - SUBSTRATE.poisson * SUBSTRATE.poisson);
+    let load = 4.0 * e_star * a0.powi(3) / (3.0 * radius);
+    let p0 = 3.0 * load / (2.0 * std::f64::consts::PI * a0 * a0);
+    let coating = |young: f64| Elastic {
+        young,
+        poisson: 0.3,
+    };
+    for (name, e1, e2, published_radius, published_peak) in [
+        ("compliant", 0.25, 0.5, 1.373, Some(0.582)),
+        ("stiff", 4.0, 2.0, 0.695, None),
+    ] {
+        let mut case = cases::sphere(load, 128);
+        case.slider = thirdbody::Slider::Sphere { radius };
+        case.body = stack(&[(coating(e1), 0.5 * a0), (coating(e2), 0.5 * a0)]);
+        let m = solve(&case, &SolverParams::default()).unwrap().summary();
+        let contact_radius = (m.contact_area / std::f64::consts::PI).sqrt() / a0;
+        let peak = m.max_pressure / p0;
+        eprintln!("{name}: contact radius {contact_radius:.4} a0, peak {peak:.4} P0");
+        // Measured: 1.3775 and 0.5817 P0 (compliant), 0.6973 and 1.94 P0 (stiff);
+        // on 256^2 1.3758 and 0.6966.
+        let error = contact_radius / published_radius - 1.0;
+        assert!(error.abs() < 5e-3, "{name}: contact radius {error:+.2e}");
+        match published_peak {
+            Some(published) => {
+                let error = peak / published - 1.0;
+                assert!(error.abs() < 2e-3, "{name}: peak {error:+.2e}");
+            }
+            None => assert!((1.8..2.2).contains(&peak), "{name}: peak {peak} P0"),
+        }
+    }
+}
