@@ -550,7 +550,8 @@ fn solve_on_windows(
         let mut first = solve_unsettled(&mut problem, warm.as_ref(), params, observer)
             .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
         let newton = first.method == Method::SemismoothNewton;
-        let mut contact: Vec<f64> = first.pressure.iter().map(|&v| v.max(0.0)).collect();
+        let loaded = |p: &[f64]| -> Vec<f64> { p.iter().map(|&v| v.max(0.0)).collect() };
+        let mut contact = loaded(&first.pressure);
         let mut next = (!fixed)
             .then(|| window::next_window(&grid, &contact, grid.touches_edge(&contact)))
             .flatten();
@@ -564,7 +565,7 @@ fn solve_on_windows(
                 observer,
             )
             .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
-            contact = first.pressure.iter().map(|&v| v.max(0.0)).collect();
+            contact = loaded(&first.pressure);
             if !fixed {
                 next = window::next_window(&grid, &contact, grid.touches_edge(&contact));
             }
@@ -823,7 +824,7 @@ fn solve_unsettled(
 /// summed with the earlier ones.
 fn settle_edges(
     problem: &mut ContactProblem,
-    p: &mut Vec<f64>,
+    p: &mut [f64],
     mut r: SolveReport,
     params: &SolverParams,
     observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
@@ -833,7 +834,7 @@ fn settle_edges(
         let moved = problem.layer.as_ref().and_then(|l| l.relocated(p, &gap));
         let Some(layer) = moved else { break };
         let placed = problem.layer.replace(layer);
-        let before = p.clone();
+        let before = p.to_vec();
         // Its iterations continue the count the summary reports.
         let counted = |offset: usize| {
             move |progress: Progress| match progress {
@@ -860,7 +861,7 @@ fn settle_edges(
         // solution (energy balance 3 %); the retry converges.
         let again = match first {
             Err(Error::NoConvergence { iterations, .. }) => {
-                p.clone_from(&before);
+                p.copy_from_slice(&before);
                 let relabel = counted(offset + iterations);
                 newton::semismooth_newton_scaled(
                     problem,
@@ -882,7 +883,7 @@ fn settle_edges(
             Err(_) => {
                 // The last converged solution stands, with its edges.
                 problem.layer = placed;
-                *p = before;
+                p.copy_from_slice(&before);
                 break;
             }
         };
