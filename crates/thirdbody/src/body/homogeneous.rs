@@ -7,7 +7,7 @@
 //! `1 / sqrt(u^2 + v^2)`), which stays finite on cell edges and corners, unlike
 //! the textbook logarithms whose arguments vanish there.
 
-use super::{BodyModel, SurfaceKernel};
+use super::{BodyModel, EdgeProfile, SurfaceKernel};
 use crate::case::Elastic;
 use crate::error::Result;
 use crate::grid::Grid;
@@ -60,7 +60,13 @@ impl BodyModel for HomogeneousHalfSpace {
         true
     }
 
-    fn dissipated_force(&self, _grid: &Grid, _pressure: &[f64], _velocity: f64) -> Result<f64> {
+    fn dissipated_force(
+        &self,
+        _grid: &Grid,
+        _pressure: &[f64],
+        _velocity: f64,
+        _edges: EdgeProfile,
+    ) -> Result<f64> {
         Ok(0.0)
     }
 

@@ -26,6 +26,7 @@ use std::sync::Arc;
 use realfft::num_complex::Complex;
 
 pub use homogeneous::HomogeneousHalfSpace;
+pub use hysteresis::EdgeProfile;
 pub use solid::{SolidRheology, ViscoelasticHalfSpace};
 pub use stack::StackBody;
 pub use viscoelastic::ViscoelasticBody;
@@ -140,8 +141,15 @@ pub trait BodyModel: std::fmt::Debug + Send + Sync {
     fn kernel_is_even(&self, velocity: f64) -> bool;
     /// The power dissipated in the body divided by the sliding speed (a force) when
     /// the cells of `grid` carry `pressure` (mean over each cell) sliding at
-    /// `velocity`: 0 for an elastic body.
-    fn dissipated_force(&self, grid: &Grid, pressure: &[f64], velocity: f64) -> Result<f64>;
+    /// `velocity`, the pressure falling to zero at the contact's edges as `edges`
+    /// says: 0 for an elastic body.
+    fn dissipated_force(
+        &self,
+        grid: &Grid,
+        pressure: &[f64],
+        velocity: f64,
+        edges: EdgeProfile,
+    ) -> Result<f64>;
     /// The six stresses at depth per unit pressure on one cell; a depth equal to an
     /// interface's is read on `interface_side`.
     fn stress_kernels(&self, interface_side: Side) -> Box<dyn StressKernels>;

@@ -152,6 +152,7 @@ impl BodyModel for StackBody {
         _grid: &crate::grid::Grid,
         _pressure: &[f64],
         _velocity: f64,
+        _edges: super::EdgeProfile,
     ) -> Result<f64> {
         Ok(0.0)
     }

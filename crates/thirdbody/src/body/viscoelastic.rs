@@ -212,7 +212,7 @@ use super::homogeneous::{
     half_primitive, homogeneous_surface_kernel_quadrant, rectangle_inverse_distance_integral,
 };
 use super::quadrature::GaussLegendre;
-use super::{BodyModel, SurfaceKernel};
+use super::{BodyModel, EdgeProfile, SurfaceKernel};
 use crate::case::Elastic;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
@@ -434,7 +434,13 @@ impl BodyModel for ViscoelasticBody {
         }))
     }
 
-    fn dissipated_force(&self, grid: &Grid, pressure: &[f64], velocity: f64) -> Result<f64> {
+    fn dissipated_force(
+        &self,
+        grid: &Grid,
+        pressure: &[f64],
+        velocity: f64,
+        edges: EdgeProfile,
+    ) -> Result<f64> {
         if grid.is_line() {
             return super::hysteresis::line_dissipated_force(
                 &self.creep,
@@ -443,14 +449,11 @@ impl BodyModel for ViscoelasticBody {
                 grid.cell,
             );
         }
-        super::hysteresis::dissipated_force(
-            &self.creep,
-            velocity,
-            pressure,
-            grid.nx,
-            grid.ny,
-            grid.cell,
-        )
+        let integral = match edges {
+            EdgeProfile::SquareRoot => super::hysteresis::dissipated_force_square_root_edges,
+            EdgeProfile::Bilinear => super::hysteresis::dissipated_force,
+        };
+        integral(&self.creep, velocity, pressure, grid.nx, grid.ny, grid.cell)
     }
 
     fn stress_kernels(&self, _interface_side: Side) -> Box<dyn StressKernels> {

@@ -19,6 +19,7 @@ pub(crate) mod window;
 
 use std::ops::ControlFlow;
 
+use crate::body::EdgeProfile;
 use crate::case::Case;
 use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
@@ -991,19 +992,25 @@ fn finish(
         }
         None => (None, None, 0.0),
     };
-    // The body carries each cell's mean pressure.
+    // The body carries each cell's mean pressure; its edges fall like a square
+    // root where the slider presses it directly.
+    let edges = if problem.layer.is_none() {
+        EdgeProfile::SquareRoot
+    } else {
+        EdgeProfile::Bilinear
+    };
     let body_dissipated_force = if entries.is_empty() {
         problem
             .body
             .model()
-            .dissipated_force(&grid, &p, problem.velocity)?
+            .dissipated_force(&grid, &p, problem.velocity, edges)?
     } else {
         let mut mean = vec![0.0; n];
         crate::layer::cell_mean_pressure(&entries, &p, &mut mean);
         problem
             .body
             .model()
-            .dissipated_force(&grid, &mean, problem.velocity)?
+            .dissipated_force(&grid, &mean, problem.velocity, edges)?
     };
     let dissipated_force = layer_dissipated_force + body_dissipated_force;
     let shape = give_back_lag(problem, &p, &mut wb);
