@@ -340,7 +340,7 @@ fn friction_equals_the_power_dissipated_in_the_body() {
         }
         eprintln!("V tau / a0 {zeta}: energy imbalance {imbalance:?}");
         // Measured (64^2, 128^2, 256^2), V tau / a0 = 1e-4: 0.51 %, 0.53 %, 0.090 %;
-        // 1e-3: 0.28 %, 0.015 %, 0.21 %; 1e-2: 0.11 %, 0.12 %, 0.017 %; 0.1: 0.28 %,
+        // 1e-3: 0.28 %, 0.014 %, 0.17 %; 1e-2: 0.053 %, 0.064 %, 0.0049 %; 0.1: 0.28 %,
         // 0.059 %, 0.015 %; 1: 0.080 %, 0.014 %, 0.0036 %; 10: 0.16 %, 0.012 %,
         // 0.0011 %. Against the 768^2 and 1024^2 solutions (4.494e-5, 4.469e-4 at
         // the two slowest speeds) the dissipation on 128^2 is 0.21 % and 0.29 % low,
