@@ -892,9 +892,10 @@ const EDGE_REFINEMENT_CELLS: usize = 384;
 /// root ([`EdgeProfile::SquareRoot`]): where some branch creeps less than
 /// 16 cells, the loss is integrated over the field `sqrt(max(0, s))` sampled on
 /// cells `r` times finer, `s` the bilinear interpolant of the squared cell values
-/// continued linearly to negative values one cell beyond the contact, scaled to
-/// carry the cells' load (module doc, "Square-root edges"); elsewhere it is
-/// [`dissipated_force`].
+/// continued linearly to negative values one cell beyond the contact (the
+/// bilinear field of the pressures next to a cell where they do not fall like a
+/// root), scaled to carry the cells' load (module doc, "Square-root edges");
+/// elsewhere it is [`dissipated_force`].
 pub fn dissipated_force_square_root_edges(
     creep: &CreepSeries,
     velocity: f64,
@@ -911,18 +912,14 @@ pub fn dissipated_force_square_root_edges(
         .map(|b| velocity * b.retardation_time / cell)
         .fold(f64::INFINITY, f64::min);
     let factor = EDGE_REFINEMENT_CELLS.div_ceil(nx.max(ny));
-    if shortest >= EDGE_REFINEMENT_BELOW || factor < 2 {
-        return dissipated_force(creep, velocity, pressure, nx, ny, cell);
-    }
-    match square_root_edge_field(pressure, nx, ny, factor) {
-        Some(fine) => dissipated_force(
-            creep,
-            velocity,
-            &fine,
-            nx * factor,
-            ny * factor,
-            cell / factor as f64,
-        ),
+    let fine = (shortest < EDGE_REFINEMENT_BELOW && factor >= 2)
+        .then(|| square_root_edge_field(pressure, nx, ny, factor))
+        .flatten();
+    match fine {
+        Some(fine) => {
+            let cell = cell / factor as f64;
+            dissipated_force(creep, velocity, &fine, nx * factor, ny * factor, cell)
+        }
         None => dissipated_force(creep, velocity, pressure, nx, ny, cell),
     }
 }
