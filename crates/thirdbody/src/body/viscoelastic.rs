@@ -241,10 +241,10 @@ const FAR_POINTS: usize = 12;
 const EXP_CUTOFF: f64 = 46.0;
 /// Share `kappa` of the upwind correction that damps the odd–even mode of the
 /// creep's collocation (module documentation, "The solvers' kernel") for a branch
-/// creeping over up to [`LONG_CREEP_FROM`] cells: the layer's value, whose analysis
+/// creeping over up to 4 cells: the layer's value, whose analysis
 /// it follows.
 pub const LEADING_EDGE_DAMPING: f64 = 0.1;
-/// The share for a branch creeping over [`LONG_CREEP_TO`] cells and more, whose
+/// The share for a branch creeping over 16 cells and more, whose
 /// correction's lag, `O(kappa h^2 / l)`, is small beside the creep's own.
 pub const LONG_CREEP_DAMPING: f64 = 0.3;
 /// Creep lengths (cells) from which the share rises, in a smooth step in `ln
@@ -548,20 +548,19 @@ fn split_branches(series: &CreepSeries, cell: f64, velocity: f64) -> (f64, Vec<(
     (instantaneous, creeping)
 }
 
-/// The share of a branch creeping over `lambda` cells that the solvers' kernel
-/// takes as a lag in the gap (module documentation, "creep shorter than a cell"): 1
-/// up to [`LAG_FROM`], 0 from [`LAG_TO`], a smooth step in `ln lambda` between.
 /// The share `kappa` of the leading-edge damping for a branch creeping over
 /// `lambda` cells (module documentation, "The solvers' kernel: leading-edge
-/// damping"): [`LEADING_EDGE_DAMPING`] up to [`LONG_CREEP_FROM`] cells,
-/// [`LONG_CREEP_DAMPING`] from [`LONG_CREEP_TO`], a smooth step in `ln lambda`
-/// between.
+/// damping"): [`LEADING_EDGE_DAMPING`] up to 4 cells, [`LONG_CREEP_DAMPING`] from
+/// 16, a smooth step in `ln lambda` between.
 pub fn damping_share(lambda: f64) -> f64 {
     let t =
         ((lambda / LONG_CREEP_FROM).ln() / (LONG_CREEP_TO / LONG_CREEP_FROM).ln()).clamp(0.0, 1.0);
     LEADING_EDGE_DAMPING + (LONG_CREEP_DAMPING - LEADING_EDGE_DAMPING) * t * t * (3.0 - 2.0 * t)
 }
 
+/// The share of a branch creeping over `lambda` cells that the solvers' kernel
+/// takes as a lag in the gap (module documentation, "creep shorter than a cell"): 1
+/// up to [`LAG_FROM`], 0 from [`LAG_TO`], a smooth step in `ln lambda` between.
 fn lag_share(lambda: f64) -> f64 {
     if lambda <= LAG_FROM {
         return 1.0;
