@@ -368,7 +368,10 @@ impl Case {
     /// step's GMRES basis on the contact cells (~150); measured peaks at 1024² are
     /// 210 (Hertz) and 315 (the paper's Fig. 3) bytes per cell (docs/performance.md).
     /// A viscoelastic body in steady sliding adds its general spectrum and its build
-    /// (measured peaks of the CLI's solve: 550 bytes per cell at 256², 470 at 512²).
+    /// (measured peaks of the CLI's solve: 550 bytes per cell at 256², 470 at 512²),
+    /// and a Newton step that stagnates there lengthens the GMRES basis from 41 to
+    /// 121 vectors of the contact cells (about half the window's: 320 bytes per cell
+    /// more).
     pub fn estimated_solve_bytes(&self) -> f64 {
         let cells = self.grid.cells[0] as f64 * self.grid.cells[1] as f64;
         // A body whose kernel is not even keeps a general spectrum (four times the
@@ -377,7 +380,7 @@ impl Case {
         // solved by Newton.
         let creeping_body = !self.body.model().kernel_is_even(self.velocity());
         let per_cell = if creeping_body {
-            520.0
+            880.0
         } else if self.layer.is_some() {
             370.0
         } else {
