@@ -553,23 +553,28 @@ fn split_branches(series: &CreepSeries, cell: f64, velocity: f64) -> (f64, Vec<(
 /// damping"): [`LEADING_EDGE_DAMPING`] up to 4 cells, [`LONG_CREEP_DAMPING`] from
 /// 16, a smooth step in `ln lambda` between.
 pub fn damping_share(lambda: f64) -> f64 {
-    let t =
-        ((lambda / LONG_CREEP_FROM).ln() / (LONG_CREEP_TO / LONG_CREEP_FROM).ln()).clamp(0.0, 1.0);
-    LEADING_EDGE_DAMPING + (LONG_CREEP_DAMPING - LEADING_EDGE_DAMPING) * t * t * (3.0 - 2.0 * t)
+    let step = step_in_ln(lambda, LONG_CREEP_FROM, LONG_CREEP_TO);
+    LEADING_EDGE_DAMPING + (LONG_CREEP_DAMPING - LEADING_EDGE_DAMPING) * step
+}
+
+/// 0 up to `from` cells of creep, 1 from `to`, between them the smooth step `t^2 (3
+/// - 2 t)` of `t = ln(lambda / from) / ln(to / from)`.
+fn step_in_ln(lambda: f64, from: f64, to: f64) -> f64 {
+    if lambda <= from {
+        return 0.0;
+    }
+    if lambda >= to {
+        return 1.0;
+    }
+    let t = (lambda / from).ln() / (to / from).ln();
+    t * t * (3.0 - 2.0 * t)
 }
 
 /// The share of a branch creeping over `lambda` cells that the solvers' kernel
 /// takes as a lag in the gap (module documentation, "creep shorter than a cell"): 1
 /// up to [`LAG_FROM`], 0 from [`LAG_TO`], a smooth step in `ln lambda` between.
 fn lag_share(lambda: f64) -> f64 {
-    if lambda <= LAG_FROM {
-        return 1.0;
-    }
-    if lambda >= LAG_TO {
-        return 0.0;
-    }
-    let t = (lambda / LAG_FROM).ln() / (LAG_TO / LAG_FROM).ln();
-    1.0 - t * t * (3.0 - 2.0 * t)
+    1.0 - step_in_ln(lambda, LAG_FROM, LAG_TO)
 }
 
 /// The solvers' kernel's branches (module documentation, "creep shorter than a
