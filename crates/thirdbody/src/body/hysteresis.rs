@@ -144,7 +144,7 @@
 //! where the loss gathers within a creep length of the edges, as many as fit in 768),
 //! scaled to carry the cells' load, and
 //! integrated as above; what remains is the finer grid's own edge error (Hertz at
-//! 128^2, that creep length: 0.22 % on 768 cells, 0.37 % on 384). On a field without edges the root adds
+//! 128^2, that creep length: 0.24 % on 640 cells, 0.37 % on 384). On a field without edges the root adds
 //! `(h^2 / 8) p'^2 / p` to the interpolant's second-order error (the Gaussian's
 //! error doubles). Creep lengths of 16 cells and more keep the bilinear field:
 //! their loss lives at wavenumbers the edge barely reaches (the two agree to 1e-3).
@@ -892,9 +892,9 @@ const EDGE_REFINEMENT_CELLS: usize = 384;
 /// Creep lengths (in cells) below which the finer grid is made as fine as fits in
 /// [`SLOW_EDGE_REFINEMENT_CELLS`] across: there the dissipation gathers within a
 /// creep length of the edges, and the 384-cell grid left the estimate of a Hertz
-/// pressure 0.37 % low at l / a = 1e-3 on 128^2 (0.22 % on 768 cells; a Zener
-/// body at V tau / a0 = 1e-4 on 128^2: 0.21 % below the finest solves, 0.001 % on
-/// 768 cells).
+/// pressure 0.37 % low at l / a = 1e-3 on 128^2 (0.24 % on the 640 cells of the
+/// odd factor 5; a Zener body at V tau / a0 = 1e-4 on 128^2: 0.21 % below the
+/// finest solves, 0.04 % on 640 cells).
 const FAR_BELOW_A_CELL: f64 = 0.1;
 /// The finer grid's most cells across for creep far below a cell: a grid of `n <
 /// 384` cells is refined by the largest odd factor up to `768 / n` (if above the
