@@ -371,34 +371,3 @@ fn newton_on_set(
         hint: "Newton on the dense reference system did not converge".into(),
     })
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_direct_sum_refuses_fields_of_another_size_naming_them_and_writes_nothing() {
-        let kernel = |i: i64, j: i64| (1 + i.abs() + 2 * j.abs()) as f64;
-        let field: Vec<f64> = (0..30).map(|k| k as f64).collect();
-        let mut out = vec![0.0; 30];
-        let names = |r: Result<()>, name: &str| matches!(r, Err(Error::InvalidValue { field, .. }) if field == name);
-        assert!(names(
-            direct_convolution(6, 5, kernel, &field[1..], &mut out),
-            "field"
-        ));
-        assert!(names(
-            direct_convolution(6, 5, kernel, &field, &mut out[1..]),
-            "out"
-        ));
-        let rows = direct_convolution_rows(6, 5, kernel, &field, [1, 5], &mut out);
-        assert!(names(rows, "rows"));
-        assert!(out.iter().all(|&v| v == 0.0));
-        // One value by hand: the corner cell (0, 0) sums K(-k, -l) f(k, l).
-        direct_convolution(6, 5, kernel, &field, &mut out).unwrap();
-        let by_hand: f64 = (0..5)
-            .flat_map(|l| (0..6).map(move |k| (l, k)))
-            .map(|(l, k)| kernel(-k, -l) * field[(l * 6 + k) as usize])
-            .sum();
-        assert_eq!(out[0], by_hand);
-    }
-}
