@@ -395,15 +395,17 @@ fn a_rubbers_glassy_ratio_converges_across_the_friction_maximum() {
 }
 
 /// Long creep over a nearly glassy leading edge: E_g / E_0 = 1e6 at V tau / a0 =
-/// 1e-5 on 128^2 (the body creeps over 550 cells) and 1e4 at 1e-4 on 256^2 (109
-/// cells). Both stopped with "did not converge": the first until the leading-edge
-/// damping's share rose for long creep (`body::viscoelastic`, "The solvers'
-/// kernel"), the second also until Newton's GMRES took a longer restart after a
-/// stagnating step. Independent checks: the energy balance, and the second case's
-/// friction and approach on 128^2.
+/// 1e-5 on 128^2 (the body creeps over 550 cells), 1e4 at 1e-4 and 1e6 at 1e-6 on
+/// 256^2 (109 cells). All stopped with "did not converge": the first until the
+/// leading-edge damping's share rose for long creep (`body::viscoelastic`, "The
+/// solvers' kernel"), the second also until Newton's GMRES took a longer restart
+/// after a stagnating step, the third until the window's scout solved at half the
+/// cells (the warm start from 51 cells across sent Newton's first step far off).
+/// Independent checks: the energy balance, and on 256^2 the friction and approach
+/// on 128^2.
 #[test]
 fn long_creep_over_a_nearly_glassy_edge_converges() {
-    for (ratio, zeta, cells) in [(1e6, 1e-5, 128), (1e4, 1e-4, 256)] {
+    for (ratio, zeta, cells) in [(1e6, 1e-5, 128), (1e4, 1e-4, 256), (1e6, 1e-6, 256)] {
         let body = zener(ratio, 1.0, 1.0, 0.0);
         let s = solve(&sliding(body, zeta * A0, cells, None), &P)
             .unwrap_or_else(|e| panic!("E_g/E_0 {ratio}, {cells}^2: {e}"))
@@ -414,7 +416,7 @@ fn long_creep_over_a_nearly_glassy_edge_converges() {
             "E_g/E_0 {ratio:e}, zeta {zeta:e}, {cells}^2: mu {:.6e}, balance {balance:.2e}",
             s.friction_coefficient
         );
-        // Measured: 1.1e-3 and 2.6e-4.
+        // Measured: 1.1e-3, 2.6e-4 and 2.0e-4.
         assert!(balance < 5e-3, "E_g/E_0 {ratio}: {balance}");
         if cells == 256 {
             let coarse = solve(
@@ -426,7 +428,7 @@ fn long_creep_over_a_nearly_glassy_edge_converges() {
             let mu = rel(s.friction_coefficient, coarse.friction_coefficient);
             let approach = rel(s.penetration, coarse.penetration);
             eprintln!("against 128^2: mu {mu:.2e}, D {approach:.2e}");
-            // Measured: mu 2.1e-4.
+            // Measured: mu 2.0e-4 and 2.1e-4, D 3.8e-5 both.
             assert!(mu < 1e-3, "{mu}");
             assert!(approach < 1e-3, "{approach}");
         }

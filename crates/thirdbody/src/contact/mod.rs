@@ -604,14 +604,32 @@ fn solve_on_windows(
     })
 }
 
-/// Cells across the coarse grid of [`scout`] on large grids; smaller grids are
-/// scouted at half their cells.
-const SCOUT_CELLS: usize = 48;
 /// Grids with fewer cells across are not scouted (their own solve is as cheap).
 const MIN_SCOUTED_CELLS: usize = 32;
 
+/// How many times coarser the scout's grid is than the grid it places: half the
+/// cells across for a point contact, a quarter for a line contact (whose solves are
+/// cheap), each scout itself scouted the same way down to [`MIN_SCOUTED_CELLS`].
+/// The warm start is then interpolated from a grid only that much coarser, and it
+/// decides whether Newton converges at a nearly glassy leading edge: scouted from 51
+/// cells across, a Zener body at E_g/E_0 = 1e5 and 1e6, V tau / a0 = 1e-5 and 1e-6
+/// (creep over 109 cells of a 256^2 grid) failed ("did not converge", after 106 s),
+/// because the first Newton step from that start raised the residual from about
+/// 1e-3 to 0.1-0.35; from 128^2 each solves in 2-14 s. Scouting at 48 cells across
+/// whatever the grid was about 10 % faster on easy cases (a Zener body at E_g/E_0 =
+/// 10 near its friction peak on 256^2: 0.47 s against 0.52 s), and slower on glassy
+/// ones (E_g/E_0 = 1000, V tau / a0 = 1e-4 on 512^2: 53-67 s against 7.4 s). A line
+/// contact on 4096 cells warm-started from 48 stalled Newton.
+const fn scout_factor(line: bool) -> usize {
+    if line {
+        4
+    } else {
+        2
+    }
+}
+
 /// The window of a case's cells fitted to its contact as located by a solve of the
-/// same case on a coarser grid (`SCOUT_CELLS` across, or half the cells, itself
+/// same case on a coarser grid ([`scout_factor`] times fewer cells across, itself
 /// scouted the same way, with the automatic window), with that solve's window and
 /// pressure; `None` when the grid is too small to scout or the coarse solve fails
 /// (the caller then starts from the estimated window).
@@ -629,14 +647,7 @@ fn scout(
     if across < MIN_SCOUTED_CELLS {
         return None;
     }
-    // A line contact's solves are cheap: it is scouted a quarter of its cells at a
-    // time, so each warm start is interpolated from a grid only four times coarser
-    // (a Zener line contact on 4096 cells warm-started from 48 stalled Newton).
-    let factor = if first.is_line() {
-        4
-    } else {
-        (across / SCOUT_CELLS).max(2)
-    };
+    let factor = scout_factor(first.is_line());
     let mut coarse = case.clone();
     coarse.grid.cells = [first.nx / factor, (first.ny / factor).max(1)];
     // The scout only places the window: its edges need not settle.
