@@ -611,15 +611,17 @@ const MIN_SCOUTED_CELLS: usize = 32;
 /// cells across for a point contact, a quarter for a line contact (whose solves are
 /// cheap), each scout itself scouted the same way down to [`MIN_SCOUTED_CELLS`].
 /// The warm start is then interpolated from a grid only that much coarser, and it
-/// decides whether Newton converges at a nearly glassy leading edge: scouted from 51
-/// cells across, a Zener body at E_g/E_0 = 1e5 and 1e6, V tau / a0 = 1e-5 and 1e-6
-/// (creep over 109 cells of a 256^2 grid) failed ("did not converge", after 106 s),
-/// because the first Newton step from that start raised the residual from about
-/// 1e-3 to 0.1-0.35; from 128^2 each solves in 2-14 s. Scouting at 48 cells across
-/// whatever the grid was about 10 % faster on easy cases (a Zener body at E_g/E_0 =
-/// 10 near its friction peak on 256^2: 0.47 s against 0.52 s), and slower on glassy
-/// ones (E_g/E_0 = 1000, V tau / a0 = 1e-4 on 512^2: 53-67 s against 7.4 s). A line
-/// contact on 4096 cells warm-started from 48 stalled Newton.
+/// decides whether Newton converges at a nearly glassy leading edge. Scouted from 51
+/// cells across (the former rule: 48 cells across whatever the grid), Zener bodies
+/// at E_g/E_0 = 1e5, V tau / a0 = 1e-5 and at 1e6, 1e-6 and 1e-5 (creep over 109
+/// and 1,090 cells of a 256^2 grid) failed with "did not converge" after about 95 s:
+/// Newton's first step from that start raised the residual from about 1e-3 to
+/// 0.1-0.35. Scouted from 128^2 they solve in 4.2, 4.5 and 13 s; from a third of
+/// the cells in 19-31 s, from a quarter one of them failed. The former rule was
+/// faster on easy cases (a Zener body at E_g/E_0 = 10 near its friction peak on
+/// 256^2: 0.44 s against 0.52 s, summary included) and slower on glassy ones
+/// (E_g/E_0 = 1000, V tau / a0 = 1e-4 on 512^2: 53-67 s against 7.4 s). A line
+/// contact on 4096 cells warm-started from 48 cells stalled Newton.
 const fn scout_factor(line: bool) -> usize {
     if line {
         4
