@@ -503,7 +503,8 @@ fn beyond_the_model_limit(
 /// Whether a solve places the contacts' leading edges inside their cells until they
 /// stay put ([`crate::layer::LayerResponse::relocated`]: several warm-started Newton
 /// solves), or stops at its first converged solution (a scout's, or a window's that
-/// may still be replaced).
+/// may still be replaced). A scout's solution serves only for its window and
+/// pressure, so it also skips the dissipated power ([`Dissipation`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Settle {
     Edges,
@@ -580,12 +581,17 @@ fn solve_on_windows(
         }
         match next {
             None => {
+                let dissipation = match settle {
+                    Settle::Edges => Dissipation::Computed,
+                    Settle::FirstSolution => Dissipation::Skipped,
+                };
                 let mut solution = finish(
                     &mut problem,
                     first.pressure,
                     first.method,
                     first.report,
                     params.tolerance,
+                    dissipation,
                 )
                 .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
                 solution.info.windows = attempt;
@@ -684,6 +690,7 @@ pub fn solve_problem(
         first.method,
         first.report,
         params.tolerance,
+        Dissipation::Computed,
     )
 }
 
@@ -971,6 +978,17 @@ fn give_back_lag(problem: &ContactProblem, p: &[f64], wb: &mut [f64]) -> Vec<f64
     shape
 }
 
+/// Whether [`finish`] computes the power dissipated in the layer and the body (the
+/// summary's energy-balance friction), or leaves it zero: a scout's solution, used
+/// only to place a window and start its solve, skips it. The body's estimate
+/// (`body::hysteresis`) costs about 0.04 s even on small grids, a fixed cost per
+/// solve that the scouts of a creeping body paid at every level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Dissipation {
+    Computed,
+    Skipped,
+}
+
 /// Clips round-off negatives, restores the load exactly and computes every field.
 fn finish(
     problem: &mut ContactProblem,
@@ -978,6 +996,7 @@ fn finish(
     method: Method,
     report: SolveReport,
     tolerance: f64,
+    dissipation: Dissipation,
 ) -> Result<Solution> {
     let grid = problem.grid;
     let n = grid.len();
@@ -997,11 +1016,17 @@ fn finish(
     p.iter_mut().for_each(|v| *v *= scale);
     let mut wb = vec![0.0; n];
     OnCellMeans::new(problem.influence.as_mut(), &entries).apply_unchecked(&p, &mut wb);
+    let computed = dissipation == Dissipation::Computed;
     let (wl, compliance, layer_dissipated_force) = match &problem.layer {
         Some(l) => {
             let mut wl = vec![0.0; n];
             l.displacement(&p, &mut wl);
-            (Some(wl), Some(l.compliance(&p)), l.dissipated_force(&p))
+            let force = if computed {
+                l.dissipated_force(&p)
+            } else {
+                0.0
+            };
+            (Some(wl), Some(l.compliance(&p)), force)
         }
         None => (None, None, 0.0),
     };
@@ -1012,7 +1037,9 @@ fn finish(
     } else {
         EdgeProfile::Bilinear
     };
-    let body_dissipated_force = if entries.is_empty() {
+    let body_dissipated_force = if !computed {
+        0.0
+    } else if entries.is_empty() {
         problem
             .body
             .model()
