@@ -950,6 +950,43 @@ pub(super) mod tests {
             .collect()
     }
 
+    /// The largest difference between each stack's kernel on an `n x n` window and
+    /// [`polar_quadrature`] at `offsets`, over the kernel's peak; asserts each is
+    /// below `tolerance`, naming the stack's base and the offset (`label` says which
+    /// group).
+    fn worst_against_polar_quadrature(
+        stacks: &[Stack],
+        n: usize,
+        offsets: &[(usize, usize)],
+        tolerance: f64,
+        label: &str,
+    ) -> f64 {
+        let kernels: Vec<Vec<f64>> = stacks
+            .iter()
+            .map(|stack| {
+                let body = StackBody {
+                    stack: stack.clone(),
+                };
+                body.surface_kernel_quadrant(1.0, n, n).unwrap()
+            })
+            .collect();
+        let mut worst: f64 = 0.0;
+        for &(i, j) in offsets {
+            let direct = polar_quadrature(stacks, i as f64, j as f64);
+            for ((stack, kernel), direct) in stacks.iter().zip(&kernels).zip(direct) {
+                let e = (kernel[j * n + i] - direct).abs() / kernel[0];
+                worst = worst.max(e);
+                assert!(
+                    e < tolerance,
+                    "{label}, {:?} ({i}, {j}): {} vs {direct}, {e:.2e} of the peak",
+                    stack.base,
+                    kernel[j * n + i]
+                );
+            }
+        }
+        worst
+    }
+
     #[test]
     fn agrees_with_direct_polar_quadrature() {
         let mut worst_all: f64 = 0.0;
@@ -967,28 +1004,10 @@ pub(super) mod tests {
                     stacks.push(Stack { layers, base });
                 }
             }
-            let kernels: Vec<Vec<f64>> = stacks
-                .iter()
-                .map(|stack| {
-                    let body = StackBody {
-                        stack: stack.clone(),
-                    };
-                    body.surface_kernel_quadrant(1.0, 8, 8).unwrap()
-                })
-                .collect();
-            for (i, j) in [(0, 0), (1, 0), (2, 1), (5, 3)] {
-                let direct = polar_quadrature(&stacks, i as f64, j as f64);
-                for ((stack, kernel), direct) in stacks.iter().zip(&kernels).zip(direct) {
-                    let e = (kernel[j * 8 + i] - direct).abs() / kernel[0];
-                    worst_all = worst_all.max(e);
-                    assert!(
-                        e < 1e-9,
-                        "t = {t}, {:?}, ({i}, {j}): {} vs {direct}",
-                        stack.base,
-                        kernel[j * 8 + i]
-                    );
-                }
-            }
+            let offsets = [(0, 0), (1, 0), (2, 1), (5, 3)];
+            let worst =
+                worst_against_polar_quadrature(&stacks, 8, &offsets, 1e-9, &format!("t = {t}"));
+            worst_all = worst_all.max(worst);
         }
         eprintln!("stacks vs direct polar quadrature: worst {worst_all:.1e} of the peak");
     }
@@ -1024,7 +1043,6 @@ pub(super) mod tests {
             ply(1e3, 0.2, 0.01),
             ply(1e-3, 0.45, 1000.0),
         ];
-        let mut worst_all: f64 = 0.0;
         let stacks: Vec<Stack> = [
             Base::HalfSpace(elastic(1.0, 0.3)),
             Base::Rigid(BaseContact::Bonded),
@@ -1036,29 +1054,8 @@ pub(super) mod tests {
             base,
         })
         .collect();
-        let n = 256;
-        let kernels: Vec<Vec<f64>> = stacks
-            .iter()
-            .map(|stack| {
-                let body = StackBody {
-                    stack: stack.clone(),
-                };
-                body.surface_kernel_quadrant(1.0, n, n).unwrap()
-            })
-            .collect();
-        for (i, j) in [(0, 0), (3, 1), (40, 7), (255, 200)] {
-            let direct = polar_quadrature(&stacks, i as f64, j as f64);
-            for ((stack, kernel), direct) in stacks.iter().zip(&kernels).zip(direct) {
-                let e = (kernel[j * n + i] - direct).abs() / kernel[0];
-                worst_all = worst_all.max(e);
-                assert!(
-                    e < 1e-8,
-                    "{:?} ({i}, {j}): {} vs {direct}",
-                    stack.base,
-                    kernel[j * n + i]
-                );
-            }
-        }
+        let offsets = [(0, 0), (3, 1), (40, 7), (255, 200)];
+        let worst_all = worst_against_polar_quadrature(&stacks, 256, &offsets, 1e-8, "thick");
         eprintln!("thick stacks vs direct quadrature: worst {worst_all:.1e} of the peak");
     }
 
@@ -1074,21 +1071,10 @@ pub(super) mod tests {
                 layers: vec![ply(top, 0.3, thickness)],
                 base: Base::HalfSpace(elastic(base, 0.3)),
             };
-            let n = 32;
-            let kernel = StackBody {
-                stack: stack.clone(),
-            }
-            .surface_kernel_quadrant(1.0, n, n)
-            .unwrap();
-            for (i, j) in [(0, 0), (1, 0), (5, 3), (31, 31)] {
-                let direct = polar_quadrature(std::slice::from_ref(&stack), i as f64, j as f64)[0];
-                let e = (kernel[j * n + i] - direct).abs() / kernel[0];
-                worst = worst.max(e);
-                assert!(
-                    e < 1e-8,
-                    "E {top} on {base} ({i}, {j}): {e:.2e} of the peak"
-                );
-            }
+            let offsets = [(0, 0), (1, 0), (5, 3), (31, 31)];
+            let label = format!("E {top} on {base}");
+            let e = worst_against_polar_quadrature(&[stack], 32, &offsets, 1e-8, &label);
+            worst = worst.max(e);
         }
         eprintln!("stiff on soft vs direct quadrature: worst {worst:.1e} of the peak");
     }
@@ -1097,7 +1083,6 @@ pub(super) mod tests {
     fn poisson_ratio_extremes_agree_with_direct_quadrature() {
         // Nearly incompressible and auxetic layers, where the rigid-base slopes and
         // the membrane terms are extreme.
-        let mut worst_all: f64 = 0.0;
         let stacks: Vec<Stack> = [
             Base::HalfSpace(elastic(1.0, 0.499)),
             Base::Rigid(BaseContact::Bonded),
@@ -1109,28 +1094,8 @@ pub(super) mod tests {
             base,
         })
         .collect();
-        let kernels: Vec<Vec<f64>> = stacks
-            .iter()
-            .map(|stack| {
-                let body = StackBody {
-                    stack: stack.clone(),
-                };
-                body.surface_kernel_quadrant(1.0, 8, 8).unwrap()
-            })
-            .collect();
-        for (i, j) in [(0, 0), (1, 0), (4, 3)] {
-            let direct = polar_quadrature(&stacks, i as f64, j as f64);
-            for ((stack, kernel), direct) in stacks.iter().zip(&kernels).zip(direct) {
-                let e = (kernel[j * 8 + i] - direct).abs() / kernel[0];
-                worst_all = worst_all.max(e);
-                assert!(
-                    e < 1e-9,
-                    "{:?} ({i}, {j}): {} vs {direct}",
-                    stack.base,
-                    kernel[j * 8 + i]
-                );
-            }
-        }
+        let offsets = [(0, 0), (1, 0), (4, 3)];
+        let worst_all = worst_against_polar_quadrature(&stacks, 8, &offsets, 1e-9, "Poisson");
         eprintln!("Poisson extremes vs direct quadrature: worst {worst_all:.1e} of the peak");
     }
 
