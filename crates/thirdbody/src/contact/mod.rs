@@ -623,10 +623,11 @@ const MIN_SCOUTED_CELLS: usize = 32;
 /// and 1,090 cells of a 256^2 grid) failed with "did not converge" after about 95 s:
 /// Newton's first step from that start raised the residual from about 1e-3 to
 /// 0.1-0.35. Scouted from 128^2 they solve in 4.2, 4.5 and 13 s; from a third of
-/// the cells in 19-31 s, from a quarter one of them failed. The former rule was
-/// faster on easy cases (a Zener body at E_g/E_0 = 10 near its friction peak on
-/// 256^2: 0.44 s against 0.52 s, summary included) and slower on glassy ones
-/// (E_g/E_0 = 1000, V tau / a0 = 1e-4 on 512^2: 53-67 s against 7.4 s). A line
+/// the cells in 19-31 s, from a quarter one of them failed. Easy cases cost what
+/// they did under the former rule once the scouts skip the dissipated power (a
+/// Zener body at E_g/E_0 = 10 near its friction peak on 256^2: 0.40 s against 0.43
+/// s, summary included; 0.52 s with the dissipation); glassy ones are faster
+/// (E_g/E_0 = 1000, V tau / a0 = 1e-4 on 512^2: 7.4 s against 53-67 s). A line
 /// contact on 4096 cells warm-started from 48 cells stalled Newton.
 const fn scout_factor(line: bool) -> usize {
     if line {
