@@ -5,7 +5,7 @@
 
 use rustfft::num_complex::Complex64;
 use thirdbody::error::{Error, Result};
-use thirdbody_reference::{direct_convolution, direct_convolution_rows};
+use thirdbody_reference::{direct_convolution, direct_convolution_rows, fft};
 
 #[test]
 fn the_plans_transform_a_single_mode_to_a_single_peak_and_back() {
@@ -19,12 +19,12 @@ fn the_plans_transform_a_single_mode_to_a_single_peak_and_back() {
             )
         })
         .collect();
-    thirdbody_reference::fft::forward(n).process(&mut data);
+    fft::forward(n).process(&mut data);
     for (k, v) in data.iter().enumerate() {
         let want = if k == mode { n as f64 } else { 0.0 };
         assert!((v - want).norm() < 1e-12, "{k}: {v}");
     }
-    thirdbody_reference::fft::inverse(n).process(&mut data);
+    fft::inverse(n).process(&mut data);
     assert!(
         (data[1]
             - Complex64::from_polar(
@@ -37,12 +37,8 @@ fn the_plans_transform_a_single_mode_to_a_single_peak_and_back() {
     let mut real: Vec<f64> = (0..n).map(|j| (j as f64).cos()).collect();
     let kept = real.clone();
     let mut half = vec![Complex64::new(0.0, 0.0); n / 2 + 1];
-    thirdbody_reference::fft::real_forward(n)
-        .process(&mut real, &mut half)
-        .unwrap();
-    thirdbody_reference::fft::real_inverse(n)
-        .process(&mut half, &mut real)
-        .unwrap();
+    fft::real_forward(n).process(&mut real, &mut half).unwrap();
+    fft::real_inverse(n).process(&mut half, &mut real).unwrap();
     for (a, b) in real.iter().zip(&kept) {
         assert!((a / n as f64 - b).abs() < 1e-13);
     }
