@@ -20,7 +20,7 @@ pub(crate) mod window;
 use std::ops::ControlFlow;
 
 use crate::body::EdgeProfile;
-use crate::case::Case;
+use crate::case::{Case, GridSpec};
 use crate::convolution::Parallelism;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
@@ -549,8 +549,24 @@ fn solve_on_windows(
                 half_width_y: wy,
             });
         }
-        let mut first = solve_unsettled(&mut problem, warm.as_ref(), params, observer)
-            .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
+        let mut first = match solve_unsettled(&mut problem, warm.as_ref(), params, observer) {
+            // Newton from a cold start or a coarser window's pressure may stall where
+            // it converges from the same window's solution at fewer cells; a failure
+            // the model's limits explain is reported as it is.
+            Err(e @ Error::NoConvergence { .. })
+                if matches!(
+                    outside_the_model(case, beyond_the_model(case, warm.as_ref(), e.clone())),
+                    Error::NoConvergence { .. }
+                ) =>
+            {
+                match coarse_start(case, &grid, params, kernels) {
+                    Some(start) => solve_unsettled(&mut problem, Some(&start), params, observer),
+                    None => Err(e),
+                }
+            }
+            other => other,
+        }
+        .map_err(|e| beyond_the_model(case, warm.as_ref(), e))?;
         let newton = first.method == Method::SemismoothNewton;
         let loaded = |p: &[f64]| -> Vec<f64> { p.iter().map(|&v| v.max(0.0)).collect() };
         let mut contact = loaded(&first.pressure);
@@ -670,6 +686,41 @@ fn scout(
     .ok()?;
     let window = window::fit_to_contact(first.nx, first.ny, &solution.grid, &solution.pressure)?;
     Some((window, (solution.grid, solution.pressure)))
+}
+
+/// The pressure of `window` solved with half the cells across (a fixed window,
+/// itself started the same way where its solve fails), to start
+/// again a solve of `window` that did not converge; `None` when the grid is too
+/// small to coarsen or the coarse solve fails too.
+fn coarse_start(
+    case: &Case,
+    window: &Grid,
+    params: &SolverParams,
+    kernels: &mut KernelCache,
+) -> Option<(Grid, Vec<f64>)> {
+    let across = if window.is_line() {
+        window.nx
+    } else {
+        window.nx.min(window.ny)
+    };
+    if across < MIN_SCOUTED_CELLS {
+        return None;
+    }
+    let mut coarse = case.clone();
+    coarse.grid = GridSpec {
+        cells: [window.nx / 2, (window.ny / 2).max(1)],
+        half_width: Some(window.half_widths()),
+        centre: Some(window.centre()),
+    };
+    let solution = solve_on_windows(
+        &coarse,
+        params,
+        kernels,
+        &mut |_| ControlFlow::Continue(()),
+        Settle::FirstSolution,
+    )
+    .ok()?;
+    Some((solution.grid, solution.pressure))
 }
 
 /// Solves one assembled problem on its own window (no window adaptation), from the

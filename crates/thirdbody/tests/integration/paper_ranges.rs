@@ -60,3 +60,30 @@ fn every_corner_of_the_paper_ranges_converges() {
         failures.join("\n")
     );
 }
+
+/// The paper's Fig. 3 case at the slow end of its speeds (V' = 1e-4), on a finer grid
+/// than the corners above: Newton from the cold start stalled on 256² ("did not
+/// converge", residual 3.8e-2 after 51 steps) where 128² converged. A window whose
+/// solve stalls is now solved again from the same window at half the cells; 256²
+/// converges to the friction of 128², and its friction equals the energy balance's
+/// (measured: 5.5e-5 and 5.6e-5).
+#[test]
+fn the_fig3_case_in_slow_sliding_converges_on_a_fine_grid() {
+    let at = |n: usize| {
+        let mut case = crate::bundled::bundled("paper_fig3", n);
+        case.loading.velocity = Some(1e-4);
+        let s = solve(&case, &SolverParams::default())
+            .unwrap_or_else(|e| panic!("{n}²: {e}"))
+            .summary();
+        eprintln!(
+            "{n}²: mu {:.7e}, by energy {:.7e}, D {:.7e}",
+            s.friction_coefficient, s.dissipation_friction_coefficient, s.penetration
+        );
+        s
+    };
+    let (coarse, fine) = (at(128), at(256));
+    let grid = (fine.friction_coefficient / coarse.friction_coefficient - 1.0).abs();
+    assert!(grid < 3e-4, "mu on 256² against 128²: {grid:.2e}");
+    let balance = (fine.dissipation_friction_coefficient / fine.friction_coefficient - 1.0).abs();
+    assert!(balance < 3e-4, "energy balance on 256²: {balance:.2e}");
+}
