@@ -313,7 +313,9 @@ impl<'a> Monitor<'a> {
             "the residual stopped falling (from {from:.3e} to {to:.3e} over the last \
              {window} iterations), so more iterations would not help: the discrete problem \
              is too ill-conditioned at these parameters (e.g. moduli or compliances many \
-             orders of magnitude apart); check the case's scales or use a coarser tolerance"
+             orders of magnitude apart), or the iteration finds no way down from its start \
+             on this grid; check the case's scales, try another cell count or use a coarser \
+             tolerance"
         )
     }
 
