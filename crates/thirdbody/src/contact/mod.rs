@@ -666,63 +666,68 @@ fn scout(
     params: &SolverParams,
     kernels: &mut KernelCache,
 ) -> Option<(Grid, (Grid, Vec<f64>))> {
-    let across = if first.is_line() {
-        first.nx
-    } else {
-        first.nx.min(first.ny)
-    };
-    if across < MIN_SCOUTED_CELLS {
+    if cells_across(first) < MIN_SCOUTED_CELLS {
         return None;
     }
     let factor = scout_factor(first.is_line());
-    let mut coarse = case.clone();
-    coarse.grid.cells = [first.nx / factor, (first.ny / factor).max(1)];
-    // The scout only places the window: its edges need not settle.
-    let solution = solve_on_windows(
-        &coarse,
-        params,
-        kernels,
-        &mut |_| ControlFlow::Continue(()),
-        Settle::FirstSolution,
-    )
-    .ok()?;
+    let mut grid = case.grid;
+    grid.cells = [first.nx / factor, (first.ny / factor).max(1)];
+    let solution = first_solution_on(case, grid, params, kernels)?;
     let window = window::fit_to_contact(first.nx, first.ny, &solution.grid, &solution.pressure)?;
     Some((window, (solution.grid, solution.pressure)))
 }
 
 /// The pressure of `window` solved with half the cells across (a fixed window,
-/// itself started the same way where its solve fails), to start
-/// again a solve of `window` that did not converge; `None` when the grid is too
-/// small to coarsen or the coarse solve fails too.
+/// itself started the same way where its solve fails), to start again a solve of
+/// `window` that did not converge; `None` when the grid is too small to coarsen or
+/// the coarse solve fails too.
 fn coarse_start(
     case: &Case,
     window: &Grid,
     params: &SolverParams,
     kernels: &mut KernelCache,
 ) -> Option<(Grid, Vec<f64>)> {
-    let across = if window.is_line() {
-        window.nx
-    } else {
-        window.nx.min(window.ny)
-    };
-    if across < MIN_SCOUTED_CELLS {
+    if cells_across(window) < MIN_SCOUTED_CELLS {
         return None;
     }
-    let mut coarse = case.clone();
-    coarse.grid = GridSpec {
+    let grid = GridSpec {
         cells: [window.nx / 2, (window.ny / 2).max(1)],
         half_width: Some(window.half_widths()),
         centre: Some(window.centre()),
     };
-    let solution = solve_on_windows(
+    let solution = first_solution_on(case, grid, params, kernels)?;
+    Some((solution.grid, solution.pressure))
+}
+
+/// Cells across a grid: along x for a line contact, the fewer of the two axes for
+/// a point contact.
+fn cells_across(grid: &Grid) -> usize {
+    if grid.is_line() {
+        grid.nx
+    } else {
+        grid.nx.min(grid.ny)
+    }
+}
+
+/// `case` solved on the cells and window of `grid` for a coarser solve's purposes
+/// (a scout's, a stalled solve's new start): its first converged solution, without
+/// settled edges or dissipated power; `None` when it fails.
+fn first_solution_on(
+    case: &Case,
+    grid: GridSpec,
+    params: &SolverParams,
+    kernels: &mut KernelCache,
+) -> Option<Solution> {
+    let mut coarse = case.clone();
+    coarse.grid = grid;
+    solve_on_windows(
         &coarse,
         params,
         kernels,
         &mut |_| ControlFlow::Continue(()),
         Settle::FirstSolution,
     )
-    .ok()?;
-    Some((solution.grid, solution.pressure))
+    .ok()
 }
 
 /// Solves one assembled problem on its own window (no window adaptation), from the
