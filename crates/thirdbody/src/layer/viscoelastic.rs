@@ -242,8 +242,11 @@ const MOVING_BRANCH_SHARE: f64 = 1e-3;
 /// Smallest distance from a contact's edge to its entry cell's centre, in cells.
 const MIN_ENTRY: f64 = 1e-6;
 
-/// Change of an entry fraction, relative to it (or to 0.1 when smaller), below
-/// which a located edge has not moved: the entry cell's pressure errs by as much.
+/// Change of an entry fraction, relative to the larger of its old and new values,
+/// below which a located edge has not moved: the entry cell's pressure errs by as
+/// much. (No floor: an edge near its cell's centre must hold still to a small
+/// fraction of a cell, which can keep the relocations going; docs/validation.md,
+/// "Probes of extreme cases".)
 const ENTRY_TOLERANCE: f64 = 1e-4;
 
 /// Share of its move an edge makes from one solve to the next (module docs): the
