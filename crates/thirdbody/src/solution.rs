@@ -97,11 +97,12 @@ pub struct Summary {
     pub normal_load: f64,
     /// D.
     pub penetration: f64,
-    /// Largest cell pressure.
+    /// Largest pressure: at the cells' centres, and between each leading edge
+    /// located inside a cell and that cell's centre.
     pub max_pressure: f64,
-    /// x of the cell with the largest pressure.
+    /// x of the largest pressure.
     pub max_pressure_x: f64,
-    /// y of the cell with the largest pressure.
+    /// y of the largest pressure.
     pub max_pressure_y: f64,
     /// Number of loaded cells times the cell area.
     pub contact_area: f64,
@@ -269,13 +270,24 @@ impl Solution {
         if g.is_line() && count > 0 {
             [xmin, xmax] = line_contact_edges(g, &mean);
         }
+        let (mut pmax_x, mut pmax_y) = (g.x(kmax % g.nx), g.y(kmax / g.nx));
+        // Where the pressure jumps at a leading edge, or rises within the entry
+        // cell, its peak lies between the edge and the cell's centre.
+        for e in self.contact_edges.iter().filter(|e| e.is_leading()) {
+            let (peak, s) = e.peak_behind(&self.pressure);
+            if peak > pmax {
+                pmax = peak;
+                pmax_x = g.x(e.cell % g.nx) + (e.theta - s) * g.cell;
+                pmax_y = g.y(e.cell / g.nx);
+            }
+        }
         let mu = traction / self.normal_load;
         Summary {
             normal_load: self.normal_load,
             penetration: self.approach,
             max_pressure: pmax,
-            max_pressure_x: g.x(kmax % g.nx),
-            max_pressure_y: g.y(kmax / g.nx),
+            max_pressure_x: pmax_x,
+            max_pressure_y: pmax_y,
             contact_area: count as f64 * area,
             contact_x_min: xmin,
             contact_x_max: xmax,

@@ -148,14 +148,14 @@ fn kelvin_voigt_layer_with_interior_maximum_matches_the_row_solution_to_1e_3() {
 fn kelvin_voigt_layer_with_leading_edge_jump_matches_the_row_solution() {
     // K2: L = 1.3 b0, so the largest pressure is the jump p(b) = L b / (R C) at the
     // leading edge, which cuts through cells. The layer locates each row's edge
-    // inside its cell and integrates the branch from there: mu, D and the edges to
-    // 1e-3, max_pressure to 5e-3 (the largest cell-centre value lies up to a cell
-    // behind the edge, where the pressure has fallen by the row solution's slope
-    // times that distance), and nothing to warn of.
+    // inside its cell and integrates the branch from there: mu, D, the edges and
+    // max_pressure (the pressure at the located edge, on the entry cell's line) to
+    // 1e-3, and nothing to warn of. (Measured p_max -2.6e-4; -2.1e-3 when
+    // max_pressure read only the cells' centres, the largest up to a cell behind
+    // the edge.)
     let (q, v) = (2e-5, 0.03);
     let r = kelvin_voigt(R, q, 0.02, 1.0, v);
-    let e = check("K2", kelvin_voigt_layer(0.02), q, v, &r, 128, &[1, 2, 3, 4]);
-    assert!(e[0].abs() < 5e-3, "K2 p_max {:+.2e}", e[0]);
+    check("K2", kelvin_voigt_layer(0.02), q, v, &r, 128, &ALL);
     let c = case(kelvin_voigt_layer(0.02), q, v, [128, 128], &r);
     let s = solve(&c, &SolverParams::default()).unwrap();
     let warnings = thirdbody::report::model_warnings(&c, &s);
@@ -214,7 +214,10 @@ fn kelvin_voigt_leading_edge_pressure_is_resolved_at_every_creep_length() {
              {turns}, largest dip {dip:.1e} of p_max",
             v / r.x_max
         );
-        assert!(p_max.abs() < 0.02, "V tau / b {ratio}: p_max {p_max:+.2e}");
+        // The peak is the jump at the located edge, inside its cell (measured
+        // -3.6e-5, -3.4e-5, -1.1e-5, -1.1e-4, -4.5e-4; up to -4.0e-3 when
+        // max_pressure read only the cells' centres).
+        assert!(p_max.abs() < 2e-3, "V tau / b {ratio}: p_max {p_max:+.2e}");
         assert!(mu.abs() < 1e-3, "V tau / b {ratio}: mu {mu:+.2e}");
         assert!(
             turns <= 1 && dip < 1e-3,

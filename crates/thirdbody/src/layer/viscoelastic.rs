@@ -335,7 +335,7 @@ fn slope_downstream(
 
 /// Whether `e` is a leading edge (its loaded neighbour downstream, at -x).
 fn leading(e: &ContactEdge) -> bool {
-    e.neighbour.is_none_or(|n| n < e.cell)
+    e.is_leading()
 }
 
 /// Where edge `e` lies along its row, in cells from the row's first centre, +x
