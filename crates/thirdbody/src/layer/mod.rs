@@ -498,6 +498,16 @@ pub(crate) mod tests {
         (f(a) + f(b) + inner) * h / 3.0
     }
 
+    /// The rise with the terms `(a_m, l_m)`.
+    fn rise_of(terms: &[(f64, f64)]) -> Rise {
+        let mut rise = Rise::NONE;
+        for (m, &(a, l)) in terms.iter().enumerate() {
+            rise.amplitudes[m] = a;
+            rise.lengths[m] = l;
+        }
+        rise
+    }
+
     #[test]
     fn the_peak_behind_a_leading_edge_is_the_profiles_maximum() {
         // The profile L(s) rho(s) between the edge and the centre, sampled at a
@@ -516,11 +526,7 @@ pub(crate) mod tests {
         for next in [0.6, 1.4] {
             for theta in [1e-3, 0.2, 0.5, 1.0] {
                 for terms in rises {
-                    let mut rise = Rise::NONE;
-                    for (m, &(a, l)) in terms.iter().enumerate() {
-                        rise.amplitudes[m] = a;
-                        rise.lengths[m] = l;
-                    }
+                    let rise = rise_of(terms);
                     let edge = ContactEdge {
                         cell: 1,
                         neighbour: Some(0),
@@ -570,11 +576,7 @@ pub(crate) mod tests {
         for neighbour in [Some(0), None] {
             for theta in [1e-3, 0.05, 0.3, 0.5, 1.0] {
                 for terms in rises {
-                    let mut rise = Rise::NONE;
-                    for (m, &(a, l)) in terms.iter().enumerate() {
-                        rise.amplitudes[m] = a;
-                        rise.lengths[m] = l;
-                    }
+                    let rise = rise_of(terms);
                     let edge = ContactEdge {
                         cell: 1,
                         neighbour,
