@@ -333,16 +333,11 @@ fn slope_downstream(
     }
 }
 
-/// Whether `e` is a leading edge (its loaded neighbour downstream, at -x).
-fn leading(e: &ContactEdge) -> bool {
-    e.is_leading()
-}
-
 /// Where edge `e` lies along its row, in cells from the row's first centre, +x
 /// upstream.
 fn edge_position(e: &ContactEdge, nx: usize) -> f64 {
     let i = (e.cell % nx) as f64;
-    if leading(e) {
+    if e.is_leading() {
         i + e.theta
     } else {
         i - e.theta
@@ -353,7 +348,7 @@ fn edge_position(e: &ContactEdge, nx: usize) -> f64 {
 /// as `e` is) would cut the same cell, theta in (0, 1].
 fn within_cell_of(e: &ContactEdge, position: f64, nx: usize) -> bool {
     let offset = position - edge_position(e, nx);
-    let theta = e.theta + if leading(e) { offset } else { -offset };
+    let theta = e.theta + if e.is_leading() { offset } else { -offset };
     theta > 0.0 && theta <= 1.0
 }
 
@@ -379,7 +374,7 @@ fn next_edges(
         && old
             .iter()
             .zip(&new)
-            .all(|(a, b)| leading(a) == leading(b) && a.cell / nx == b.cell / nx);
+            .all(|(a, b)| a.is_leading() == b.is_leading() && a.cell / nx == b.cell / nx);
     if !matched {
         return (new, false);
     }
@@ -389,12 +384,12 @@ fn next_edges(
         .zip(new)
         .enumerate()
         .map(|(index, (a, b))| {
-            let unloaded_entry = leading(a) && p[a.cell] <= 0.0;
+            let unloaded_entry = a.is_leading() && p[a.cell] <= 0.0;
             let shift = (position(a) - position(&b)).abs();
             if !unloaded_entry {
                 let allowed = if a.cell != b.cell {
                     CENTRE_CROSSING
-                } else if leading(a) {
+                } else if a.is_leading() {
                     ENTRY_TOLERANCE * a.theta.max(b.theta).max(ENTRY_FLOOR)
                 } else {
                     EXIT_TOLERANCE
@@ -2219,7 +2214,7 @@ impl LayerResponse for ViscoelasticRows {
             .iter()
             .zip(&edges)
             .map(|(a, b)| {
-                if leading(a) == leading(b) && a.cell / nx == b.cell / nx {
+                if a.is_leading() == b.is_leading() && a.cell / nx == b.cell / nx {
                     (edge_position(a, nx), edge_position(b, nx))
                 } else {
                     (f64::NAN, f64::NAN)
@@ -2228,14 +2223,14 @@ impl LayerResponse for ViscoelasticRows {
             .collect();
         let (mut edges, settled) = next_edges(&self.edge_list, &self.edge_history, edges, p, nx);
         // The rise behind each leading edge where it now lies.
-        for e in edges.iter_mut().filter(|e| leading(e)) {
+        for e in edges.iter_mut().filter(|e| e.is_leading()) {
             e.rise = rise_behind(self.rise, e.theta);
         }
         if settled {
             return None;
         }
         let mut entries = vec![0.0; entries.len()];
-        for e in edges.iter().filter(|e| leading(e)) {
+        for e in edges.iter().filter(|e| e.is_leading()) {
             entries[e.cell] = e.theta;
         }
         let history = if history.len() == edges.len() {
