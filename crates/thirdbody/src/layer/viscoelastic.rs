@@ -344,6 +344,12 @@ fn edge_position(e: &ContactEdge, nx: usize) -> f64 {
     }
 }
 
+/// Whether `a` and `b` can be one edge in two solves: in the same row, both leading
+/// or both trailing.
+fn same_edge(a: &ContactEdge, b: &ContactEdge, nx: usize) -> bool {
+    a.is_leading() == b.is_leading() && a.cell / nx == b.cell / nx
+}
+
 /// Whether an edge at `position` along the row of edge `e` (leading or trailing
 /// as `e` is) would cut the same cell, theta in (0, 1].
 fn within_cell_of(e: &ContactEdge, position: f64, nx: usize) -> bool {
@@ -370,11 +376,7 @@ fn next_edges(
     nx: usize,
 ) -> (Vec<ContactEdge>, bool) {
     let position = |e: &ContactEdge| edge_position(e, nx);
-    let matched = old.len() == new.len()
-        && old
-            .iter()
-            .zip(&new)
-            .all(|(a, b)| a.is_leading() == b.is_leading() && a.cell / nx == b.cell / nx);
+    let matched = old.len() == new.len() && old.iter().zip(&new).all(|(a, b)| same_edge(a, b, nx));
     if !matched {
         return (new, false);
     }
@@ -2214,7 +2216,7 @@ impl LayerResponse for ViscoelasticRows {
             .iter()
             .zip(&edges)
             .map(|(a, b)| {
-                if a.is_leading() == b.is_leading() && a.cell / nx == b.cell / nx {
+                if same_edge(a, b, nx) {
                     (edge_position(a, nx), edge_position(b, nx))
                 } else {
                     (f64::NAN, f64::NAN)
