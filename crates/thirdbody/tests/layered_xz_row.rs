@@ -6,8 +6,9 @@
 //! `coated_stress_brute_force.rs` and `layered_stress_kernels.rs`) on the same
 //! offsets, for rows on a cell edge, on a cell centre and in between, at depths in
 //! the top layer and below it, for a coating and a stack of three layers, with an
-//! asymmetric pressure. The two routes share the kernels' split, box and aliases, so
-//! they agree to rounding.
+//! asymmetric pressure. The two routes share the kernels' split and box; the row
+//! interpolates the transfer on Chebyshev panels shared by all depths where the table
+//! has one set per depth, so they agree to about 1e-13 of the peak.
 
 use thirdbody::body::layered::{Base, Ply, Stack};
 use thirdbody::stress::{stress_kernels, stresses, InfluenceTable, OffsetLattice, Section, Side};

@@ -243,6 +243,13 @@ pub trait StressKernels: Sync {
         self.fill(z, lattice, table);
     }
 
+    /// Work that the [`StressKernels::fill_row`]s of a section's `depths` share,
+    /// built once before them and kept in `source` ([`RowSource::keep`]). The
+    /// default keeps nothing.
+    fn prepare_row(&self, lattice: &OffsetLattice, source: &RowSource, depths: &[f64]) {
+        let _ = (lattice, source, depths);
+    }
+
     /// Plane strain (a line contact): fills `out[c][d + count - 1]`, `-(count - 1)
     /// <= d < count`, with the six stresses at `(d cell, z)` per unit pressure
     /// uniform on the strip `|x| <= cell / 2` of the surface and along all y
@@ -280,6 +287,8 @@ pub struct RowSource<'a> {
     /// lattice and split wavenumber.
     #[allow(clippy::type_complexity)]
     moments: std::sync::Mutex<Vec<(OffsetLattice, f64, std::sync::Arc<Vec<f64>>)>>,
+    /// What a body's [`StressKernels::prepare_row`] built for all the depths.
+    prepared: std::sync::OnceLock<Box<dyn std::any::Any + Send + Sync>>,
 }
 
 impl<'a> RowSource<'a> {
@@ -294,7 +303,19 @@ impl<'a> RowSource<'a> {
             offset,
             spectra: std::sync::Mutex::new(Vec::new()),
             moments: std::sync::Mutex::new(Vec::new()),
+            prepared: std::sync::OnceLock::new(),
         }
+    }
+
+    /// Keeps the work a body's [`StressKernels::prepare_row`] shares between the
+    /// depths (the first kept stays).
+    pub(crate) fn keep(&self, work: impl std::any::Any + Send + Sync) {
+        let _ = self.prepared.set(Box::new(work));
+    }
+
+    /// The work kept by [`Self::keep`], if it is a `T`.
+    pub(crate) fn kept<T: 'static>(&self) -> Option<&T> {
+        self.prepared.get().and_then(|w| w.downcast_ref::<T>())
     }
 
     /// The pressure, `[l * nx + k]`.

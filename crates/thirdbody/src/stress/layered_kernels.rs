@@ -118,6 +118,7 @@ use super::kernels::{
 use super::long_wave::{
     long_wave_kernels, long_wave_on_row, long_wave_share, short_wave_share, Radial, BAND_EDGE,
 };
+use super::row_basis::ShortWaveRow;
 use crate::body::layered::{Base, LayeredSolver, Stack};
 use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
@@ -517,7 +518,7 @@ impl LayeredStressKernels {
             return;
         }
         let k1 = split_wavenumber(lattice);
-        if ALIAS_DECAY * lattice.cell / lambda >= PI && k1 * lattice.cell < 1.0 {
+        if needs_bands(lattice, lambda) {
             // The short waves need aliases on a box of `REACH / k1` cells: in bands.
             let top = Pass::Short {
                 taper: false,
@@ -532,21 +533,25 @@ impl LayeredStressKernels {
         };
         let thickness = self.stack.thickness();
         match row {
-            Some((source, row))
-                if lattice.x_first == -(source.nx as f64 - 1.0)
-                    && lattice.cols == 2 * source.nx - 1
-                    && box_cells(span_in_cells(lattice), k1 * lattice.cell) <= ROW_BOX_LIMIT =>
-            {
-                remainder_on_row(
-                    lattice,
-                    lambda,
-                    thickness,
-                    k1,
-                    &remainder,
-                    short_waves,
-                    source,
-                    row,
-                );
+            Some((source, row)) if row_lattice(lattice, source) => {
+                let theta_cut = ALIAS_DECAY * lattice.cell / lambda;
+                match source.kept::<ShortWaveRow>() {
+                    Some(basis) if theta_cut <= basis.top() => {
+                        let mut solver = remainder.solver();
+                        let h = lattice.cell;
+                        basis.add(theta_cut, |theta| eval(&mut solver, theta / h), row);
+                    }
+                    _ => remainder_on_row(
+                        lattice,
+                        lambda,
+                        thickness,
+                        k1,
+                        &remainder,
+                        short_waves,
+                        source,
+                        row,
+                    ),
+                }
                 let basis = &mut table.scratch.long_wave;
                 long_wave_on_row(lattice, k1, &remainder, basis, source, row);
             }
@@ -805,6 +810,32 @@ impl StressKernels for LayeredStressKernels {
     ) {
         let method = self.method_at(z, lattice);
         self.fill_parts(z, lattice, table, method, Some((source, row)));
+    }
+
+    /// The short waves' rows of every depth that sums them on one box
+    /// ([`ShortWaveRow`], from the pressure's spectrum on that box).
+    fn prepare_row(&self, lattice: &OffsetLattice, source: &RowSource, depths: &[f64]) {
+        if !row_lattice(lattice, source) {
+            return;
+        }
+        let h = lattice.cell;
+        let theta_top = depths
+            .iter()
+            .filter(|&&z| self.method_at(z, lattice) == StressMethod::Full)
+            .map(|&z| self.decay_length(self.layer(z), z))
+            .filter(|&lambda| !needs_bands(lattice, lambda))
+            .map(|lambda| ALIAS_DECAY * h / lambda)
+            .fold(0.0, f64::max);
+        if theta_top == 0.0 || theta_top >= PI {
+            return;
+        }
+        let k1h = split_wavenumber(lattice) * h;
+        let len = box_cells(span_in_cells(lattice), k1h);
+        let frac_y = lattice.y_first - lattice.y_first.floor();
+        let spectrum = source.spectrum(len, frac_y);
+        source.keep(ShortWaveRow::new(
+            &spectrum, len, frac_y, source.nx, k1h, theta_top,
+        ));
     }
 
     fn fill_strip(
@@ -1070,6 +1101,24 @@ fn remainder_on_row(
             *o += v;
         }
     }
+}
+
+/// Whether the full expansion's short waves at decay length `lambda` need aliases on
+/// a box of `REACH / k1` cells, and so are summed in bands.
+fn needs_bands(lattice: &OffsetLattice, lambda: f64) -> bool {
+    let h = lattice.cell;
+    ALIAS_DECAY * h / lambda >= PI && split_wavenumber(lattice) * h < 1.0
+}
+
+/// Whether an XZ section's `lattice` (all columns of the row's sources) sums the
+/// short waves against the pressure's spectrum, on a box of at most `ROW_BOX_LIMIT`.
+fn row_lattice(lattice: &OffsetLattice, source: &RowSource) -> bool {
+    lattice.x_first == -(source.nx as f64 - 1.0)
+        && lattice.cols == 2 * source.nx - 1
+        && box_cells(
+            span_in_cells(lattice),
+            split_wavenumber(lattice) * lattice.cell,
+        ) <= ROW_BOX_LIMIT
 }
 
 /// The periodic box (cells per side) of a pass whose lowest wavenumber is `low` (times

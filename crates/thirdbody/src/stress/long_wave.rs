@@ -156,27 +156,7 @@ impl LongWaveBasis {
             .hypot(extent(lattice.y_first, lattice.rows))
             .max(h);
 
-        // k nodes and weights (times k, the polar Jacobian).
-        let rule = GaussLegendre::new(K_POINTS);
-        let widest = 8.0 / r_max;
-        let mut bounds = vec![0.0];
-        for i in (0..=GRADING).rev() {
-            let hi = k_edge * 2f64.powi(-i);
-            let lo = *bounds.last().unwrap_or(&0.0);
-            let pieces = ((hi - lo) / widest).ceil().max(1.0) as usize;
-            for p in 1..=pieces {
-                bounds.push(lo + (hi - lo) * p as f64 / pieces as f64);
-            }
-        }
-        let mut nodes = Vec::new();
-        for w in bounds.windows(2) {
-            let (lo, hi) = (w[0], w[1]);
-            let (half, mid) = (0.5 * (hi - lo), 0.5 * (hi + lo));
-            for (x, wt) in rule.nodes.iter().zip(&rule.weights) {
-                let k = mid + half * x;
-                nodes.push((k, wt * half * k));
-            }
-        }
+        let nodes = polar_nodes(k_edge, r_max);
 
         // Angular modes per k node of the unit transfers (times the weight).
         let dft = rustfft::FftPlanner::<f64>::new().plan_fft_forward(ANGLES);
@@ -218,6 +198,34 @@ impl LongWaveBasis {
             axes: Some((x_axis, y_axis)),
         };
     }
+}
+
+/// The k nodes of a polar integral over `k < k_edge` whose integrand holds `e^{i k.X}`
+/// for `|X|` up to `r_max`, and their weights times k (the polar Jacobian):
+/// Gauss–Legendre on panels graded geometrically towards k = 0 and no wider than `8 /
+/// r_max`.
+pub(super) fn polar_nodes(k_edge: f64, r_max: f64) -> Vec<(f64, f64)> {
+    let rule = GaussLegendre::new(K_POINTS);
+    let widest = 8.0 / r_max;
+    let mut bounds = vec![0.0];
+    for i in (0..=GRADING).rev() {
+        let hi = k_edge * 2f64.powi(-i);
+        let lo = *bounds.last().unwrap_or(&0.0);
+        let pieces = ((hi - lo) / widest).ceil().max(1.0) as usize;
+        for p in 1..=pieces {
+            bounds.push(lo + (hi - lo) * p as f64 / pieces as f64);
+        }
+    }
+    let mut nodes = Vec::new();
+    for w in bounds.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        let (half, mid) = (0.5 * (hi - lo), 0.5 * (hi + lo));
+        for (x, wt) in rule.nodes.iter().zip(&rule.weights) {
+            let k = mid + half * x;
+            nodes.push((k, wt * half * k));
+        }
+    }
+    nodes
 }
 
 /// The band-limited long-wave part of a remainder with wave-frame transfer

@@ -36,6 +36,7 @@ mod layered_kernels;
 pub mod line;
 mod long_wave;
 pub mod request;
+mod row_basis;
 mod sections;
 
 pub use kernels::{
