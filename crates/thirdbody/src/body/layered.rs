@@ -765,8 +765,17 @@ impl LayeredSolver {
     /// `sigma_zz`, `tau_xiz` are the same on both sides and `sigma_zz(0) = -1`.
     /// Panics for a layer index or depth outside the stack, or `k <= 0`.
     pub fn plane_response(&mut self, k: f64, layer: usize, z: f64) -> PlaneResponse {
-        let m = self.material(layer);
         self.solve(k);
+        self.solved_response(layer, z)
+    }
+
+    /// [`LayeredSolver::plane_response`] at the wavenumber of the last
+    /// [`LayeredSolver::solve`], without solving again: a solver solved once per
+    /// wavenumber serves every depth. Panics if it holds no solution.
+    pub fn solved_response(&self, layer: usize, z: f64) -> PlaneResponse {
+        assert!(self.solved, "solve before reading a response");
+        let k = self.k;
+        let m = self.material(layer);
         let (top, bottom) = (
             self.depth(layer),
             self.layers

@@ -105,16 +105,19 @@ impl ChebyshevPanels {
     /// The interpolant of the values taken at [`ChebyshevPanels::points`].
     pub fn from_values(lo: f64, hi: f64, panels: usize, degree: usize, values: &[f64]) -> Self {
         let width = (hi - lo) / panels as f64;
+        // The DCT's cosines, the same for every panel: `cosines[j * degree + k]`.
+        let cosines: Vec<f64> = (0..degree * degree)
+            .map(|jk| {
+                let (j, k) = (jk / degree, jk % degree);
+                (std::f64::consts::PI * j as f64 * (k as f64 + 0.5) / degree as f64).cos()
+            })
+            .collect();
         let mut coefficients = vec![0.0; panels * degree];
         for p in 0..panels {
             let v = &values[p * degree..(p + 1) * degree];
             for j in 0..degree {
-                let mut s = 0.0;
-                for (k, vk) in v.iter().enumerate() {
-                    s += vk
-                        * (std::f64::consts::PI * j as f64 * (k as f64 + 0.5) / degree as f64)
-                            .cos();
-                }
+                let row = &cosines[j * degree..(j + 1) * degree];
+                let s: f64 = v.iter().zip(row).map(|(vk, c)| vk * c).sum();
                 let scale = if j == 0 { 1.0 } else { 2.0 } / degree as f64;
                 coefficients[p * degree + j] = s * scale;
             }

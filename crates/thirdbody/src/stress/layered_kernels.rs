@@ -118,7 +118,7 @@ use super::kernels::{
 use super::long_wave::{
     long_wave_kernels, long_wave_on_row, long_wave_share, short_wave_share, Radial, BAND_EDGE,
 };
-use super::row_basis::ShortWaveRow;
+use super::row_basis::{LongWaveRow, ShortWaveRow};
 use crate::body::layered::{Base, LayeredSolver, Stack};
 use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
@@ -336,6 +336,18 @@ impl LayeredStressKernels {
         k: f64,
     ) -> [f64; 4] {
         let t = self.transfer(solver, k, layer, z);
+        self.difference_from(t, layer, z, carrier, k)
+    }
+
+    /// [`Self::difference`] of the transfer `t` at k.
+    fn difference_from(
+        &self,
+        t: [f64; 4],
+        layer: usize,
+        z: f64,
+        carrier: (f64, f64, f64),
+        k: f64,
+    ) -> [f64; 4] {
         let nu = self.material(layer).poisson;
         let kz = k * z;
         let e = (-kz).exp();
@@ -535,11 +547,17 @@ impl LayeredStressKernels {
         match row {
             Some((source, row)) if row_lattice(lattice, source) => {
                 let theta_cut = ALIAS_DECAY * lattice.cell / lambda;
-                match source.kept::<ShortWaveRow>() {
-                    Some(basis) if theta_cut <= basis.top() => {
-                        let mut solver = remainder.solver();
+                match source.kept::<RowWork>() {
+                    Some(work) if theta_cut <= work.short.top() => {
                         let h = lattice.cell;
-                        basis.add(theta_cut, |theta| eval(&mut solver, theta / h), row);
+                        let at = |solved: &[LayeredSolver], b: usize, theta: f64| {
+                            self.solved_remainder(&solved[b], layer, z, carrier, r1, mu, theta / h)
+                        };
+                        work.short
+                            .add(theta_cut, |b, theta| at(&work.short_solved, b, theta), row);
+                        work.long
+                            .add(|b, theta| at(&work.long_solved, b, theta), row);
+                        return;
                     }
                     _ => remainder_on_row(
                         lattice,
@@ -691,6 +709,25 @@ impl LayeredStressKernels {
         std::array::from_fn(|q| d[q] - r1[q] * e)
     }
 
+    /// [`Self::remainder`] from a solver already solved at k (one per node of an XZ
+    /// section's rows, [`RowWork`]).
+    #[allow(clippy::too_many_arguments)]
+    fn solved_remainder(
+        &self,
+        solved: &LayeredSolver,
+        layer: usize,
+        z: f64,
+        carrier: (f64, f64, f64),
+        r1: [f64; 4],
+        mu: f64,
+        k: f64,
+    ) -> [f64; 4] {
+        let t = solved.solved_response(layer, z).stress;
+        let d = self.difference_from(t, layer, z, carrier, k);
+        let e = k * (-k * mu).exp();
+        std::array::from_fn(|q| d[q] - r1[q] * e)
+    }
+
     /// The largest wave-frame remainder at the wavenumbers `1 / cell` and `pi / cell`
     /// at the surface and on both sides of the interface (per unit pressure): about
     /// `(k l)^2` while the coating's length l (h1, or its membrane length when stiff)
@@ -833,9 +870,31 @@ impl StressKernels for LayeredStressKernels {
         let len = box_cells(span_in_cells(lattice), k1h);
         let frac_y = lattice.y_first - lattice.y_first.floor();
         let spectrum = source.spectrum(len, frac_y);
-        source.keep(ShortWaveRow::new(
-            &spectrum, len, frac_y, source.nx, k1h, theta_top,
-        ));
+        let short = ShortWaveRow::new(&spectrum, len, frac_y, source.nx, k1h, theta_top);
+        let long = LongWaveRow::new(
+            source.pressure(),
+            source.nx,
+            source.rows(),
+            source.offset,
+            k1h,
+            offset_reach(lattice),
+        );
+        let solved = |thetas: &[f64]| -> Vec<LayeredSolver> {
+            thetas
+                .par_iter()
+                .map(|&theta| {
+                    let mut solver = self.solver();
+                    solver.solve(theta / h);
+                    solver
+                })
+                .collect()
+        };
+        source.keep(RowWork {
+            short_solved: solved(short.nodes()),
+            long_solved: solved(long.nodes()),
+            short,
+            long,
+        });
     }
 
     fn fill_strip(
@@ -1103,6 +1162,16 @@ fn remainder_on_row(
     }
 }
 
+/// What an XZ section's depths share ([`StressKernels::prepare_row`]): the short and
+/// long waves' rows per node and, per node, the stack solved at its wavenumber (a
+/// depth then reads its transfer without solving the stack again).
+struct RowWork {
+    short: ShortWaveRow,
+    long: LongWaveRow,
+    short_solved: Vec<LayeredSolver>,
+    long_solved: Vec<LayeredSolver>,
+}
+
 /// Whether the full expansion's short waves at decay length `lambda` need aliases on
 /// a box of `REACH / k1` cells, and so are summed in bands.
 fn needs_bands(lattice: &OffsetLattice, lambda: f64) -> bool {
@@ -1119,6 +1188,15 @@ fn row_lattice(lattice: &OffsetLattice, source: &RowSource) -> bool {
             span_in_cells(lattice),
             split_wavenumber(lattice) * lattice.cell,
         ) <= ROW_BOX_LIMIT
+}
+
+/// The largest distance (in cells) from the loaded cell's centre to an offset of
+/// `lattice`, as the long waves' Hankel transforms take it.
+fn offset_reach(lattice: &OffsetLattice) -> f64 {
+    let extent = |first: f64, count: usize| first.abs().max((first + count as f64 - 1.0).abs());
+    extent(lattice.x_first, lattice.cols)
+        .hypot(extent(lattice.y_first, lattice.rows))
+        .max(1.0)
 }
 
 /// The periodic box (cells per side) of a pass whose lowest wavenumber is `low` (times

@@ -219,47 +219,343 @@ impl ShortWaveRow {
         }
     }
 
+    /// The interpolation nodes (theta), panel after panel.
+    pub(super) fn nodes(&self) -> &[f64] {
+        &self.nodes
+    }
+
     /// The largest theta the rows hold.
     pub(super) fn top(&self) -> f64 {
         self.panels.last().map_or(0.0, |p| p.1)
     }
 
-    /// Adds to `row` the short waves of the wave-frame functions `transfer(theta)`
-    /// (`[xixi, etaeta, zz, xiz / i]`), negligible beyond `theta_cut`.
+    /// Adds to `row` the short waves of the wave-frame functions `transfer(node,
+    /// theta)` at the nodes (`[xixi, etaeta, zz, xiz / i]`), negligible beyond
+    /// `theta_cut`.
     pub(super) fn add(
         &self,
         theta_cut: f64,
-        mut transfer: impl FnMut(f64) -> [f64; 4],
+        mut transfer: impl FnMut(usize, f64) -> [f64; 4],
         row: &mut [Vec<f64>; COMPONENTS],
     ) {
         let used = self.panels.partition_point(|&(lo, _)| lo < theta_cut) * POINTS;
-        let nx = self.nx;
-        for (b, &theta) in self.nodes.iter().enumerate().take(used) {
-            let [r0, r1, r2, r3] = transfer(theta);
-            if r0 == 0.0 && r1 == 0.0 && r2 == 0.0 && r3 == 0.0 {
-                continue;
+        add_rows(&self.nodes[..used], &self.psi, self.nx, &mut transfer, row);
+    }
+}
+
+/// Points per axis of the Lagrange stencil that interpolates the pressure's
+/// spectrum, and the oversampling of its grid: the centred spectrum's frequencies
+/// are at most `n / 2` cells, so on a grid of `2 pi / (OVERSAMPLING n)` the stencil's
+/// error is about `(pi / OVERSAMPLING)^q ((q / 2)!)^2 / q!`, 5e-14 of its largest
+/// value.
+const STENCIL: usize = 14;
+const OVERSAMPLING: f64 = 16.0;
+
+/// The long waves of a layered body's remainder along a row, as rows per polar k
+/// node: `sigma_c(x_i) = (1 / 4 pi^2) int chi(k) T_c(k) S(k) E(k) e^{i k.(x_i, y)} d^2k`
+/// (theta units, h = 1), with the cell factor `S = sinc(kx / 2) sinc(ky / 2)` and the
+/// pressure's spectrum `E(k) = sum p_lm e^{-i (kx m + ky l)}`, in polar coordinates:
+/// Gauss–Legendre in |k| ([`super::long_wave::polar_nodes`], as the Hankel
+/// transforms of the kernel tables), the trapezoidal rule in the angle over as
+/// many angles as `e^{i k r_max cos}` needs (half of them: the other half gives the
+/// complex conjugate). `E` at the polar points is interpolated from a fine grid of
+/// the centred spectrum computed directly. As for the short waves, only the
+/// wave-frame transfer depends on the depth, so a depth costs the transfer at the k
+/// nodes and `nodes x 9 x nx` products.
+pub(super) struct LongWaveRow {
+    /// The k nodes (theta units).
+    thetas: Vec<f64>,
+    /// `psi[(node * ANGULAR + a) * nx + i]`.
+    psi: Vec<f64>,
+    nx: usize,
+}
+
+impl LongWaveRow {
+    /// The rows for outputs at x offsets `0..nx` cells from source column 0 and `offset`
+    /// cells along y from source row 0, of the pressure `p[l * nx + m]` on `ny` rows,
+    /// for the long-wave share `chi(theta / k1h)` (band-limited to `BAND_EDGE k1h`), with
+    /// offsets at most `r_max` cells from a source.
+    pub(super) fn new(
+        pressure: &[f64],
+        nx: usize,
+        ny: usize,
+        offset: f64,
+        k1h: f64,
+        r_max: f64,
+    ) -> Self {
+        let k_edge = BAND_EDGE * k1h;
+        let nodes = super::long_wave::polar_nodes(k_edge, r_max);
+        let spectrum = CentredSpectrum::new(pressure, nx, ny, k_edge);
+        let (cx, cy) = (0.5 * (nx as f64 - 1.0), 0.5 * (ny as f64 - 1.0));
+        let sinc = |t: f64| {
+            if t.abs() < 1e-8 {
+                1.0 - t * t / 6.0
+            } else {
+                t.sin() / t
             }
-            let rows = &self.psi[b * ANGULAR * nx..][..ANGULAR * nx];
-            let (cc, rest) = rows.split_at(nx);
-            let (ss, rest) = rest.split_at(nx);
-            let (cs, rest) = rest.split_at(nx);
-            let (c, s) = rest.split_at(nx);
-            let [o0, o1, o2, o3, o4, o5] = row;
-            for i in 0..nx {
-                o0[i] += r0 * cc[i] + r1 * ss[i];
-                o1[i] += r0 * ss[i] + r1 * cc[i];
-                o2[i] += r2 * (cc[i] + ss[i]);
-                o3[i] += (r0 - r1) * cs[i];
-                o4[i] += r3 * c[i];
-                o5[i] += r3 * s[i];
-            }
+        };
+        let psi: Vec<f64> = nodes
+            .par_iter()
+            .flat_map_iter(|&(kappa, weight)| {
+                let mut rows = vec![0.0; ANGULAR * nx];
+                let chi = super::long_wave::long_wave_share(kappa, k1h);
+                if chi == 0.0 || weight == 0.0 {
+                    return rows;
+                }
+                let kr = kappa * r_max;
+                let angles = 4 * ((kr + 12.0 * kr.cbrt() + 12.0) / 4.0).ceil() as usize;
+                let step = 2.0 * PI / angles as f64;
+                // 2 Re over the half circle kx > 0, times the angle's and k's weights.
+                let scale = 2.0 * weight * step * chi / (4.0 * PI * PI);
+                let (ccs, rest) = rows.split_at_mut(nx);
+                let (sss, rest) = rest.split_at_mut(nx);
+                let (css, rest) = rest.split_at_mut(nx);
+                let (cs_, ss_) = rest.split_at_mut(nx);
+                for j in 0..angles / 2 {
+                    let phi = -0.5 * PI + (j as f64 + 0.5) * step;
+                    let (s, c) = phi.sin_cos();
+                    let (tx, ty) = (kappa * c, kappa * s);
+                    let value = spectrum.at(tx, ty)
+                        * Complex::from_polar(
+                            scale * sinc(0.5 * tx) * sinc(0.5 * ty),
+                            ty * (offset - cy) - tx * cx,
+                        );
+                    // e^{i tx i} along the row, by recurrence (renormalised).
+                    let turn = Complex::from_polar(1.0, tx);
+                    let mut u = value;
+                    for i in 0..nx {
+                        if i % 64 == 0 {
+                            u = value * Complex::from_polar(1.0, tx * i as f64);
+                        }
+                        let (re, im) = (u.re, u.im);
+                        ccs[i] += c * c * re;
+                        sss[i] += s * s * re;
+                        css[i] += c * s * re;
+                        cs_[i] -= c * im;
+                        ss_[i] -= s * im;
+                        u *= turn;
+                    }
+                }
+                rows
+            })
+            .collect();
+        LongWaveRow {
+            thetas: nodes.iter().map(|&(k, _)| k).collect(),
+            psi,
+            nx,
         }
+    }
+
+    /// The k nodes (theta units).
+    pub(super) fn nodes(&self) -> &[f64] {
+        &self.thetas
+    }
+
+    /// Adds to `row` the long waves of the wave-frame functions `transfer(node,
+    /// theta)` at the nodes.
+    pub(super) fn add(
+        &self,
+        mut transfer: impl FnMut(usize, f64) -> [f64; 4],
+        row: &mut [Vec<f64>; COMPONENTS],
+    ) {
+        add_rows(&self.thetas, &self.psi, self.nx, &mut transfer, row);
+    }
+}
+
+/// `row += sum_b` the nine products of the transfer at node b with its angular rows.
+fn add_rows(
+    thetas: &[f64],
+    psi: &[f64],
+    nx: usize,
+    transfer: &mut impl FnMut(usize, f64) -> [f64; 4],
+    row: &mut [Vec<f64>; COMPONENTS],
+) {
+    for (b, &theta) in thetas.iter().enumerate() {
+        let [r0, r1, r2, r3] = transfer(b, theta);
+        if r0 == 0.0 && r1 == 0.0 && r2 == 0.0 && r3 == 0.0 {
+            continue;
+        }
+        let rows = &psi[b * ANGULAR * nx..][..ANGULAR * nx];
+        let (cc, rest) = rows.split_at(nx);
+        let (ss, rest) = rest.split_at(nx);
+        let (cs, rest) = rest.split_at(nx);
+        let (c, s) = rest.split_at(nx);
+        let [o0, o1, o2, o3, o4, o5] = row;
+        for i in 0..nx {
+            o0[i] += r0 * cc[i] + r1 * ss[i];
+            o1[i] += r0 * ss[i] + r1 * cc[i];
+            o2[i] += r2 * (cc[i] + ss[i]);
+            o3[i] += (r0 - r1) * cs[i];
+            o4[i] += r3 * c[i];
+            o5[i] += r3 * s[i];
+        }
+    }
+}
+
+/// The pressure's centred spectrum `E~(k) = sum p_lm e^{-i (kx (m - cx) + ky (l - cy))}`
+/// (`cx, cy` the window's centre, so its frequencies are at most half the window) on a
+/// grid of step `2 pi / (OVERSAMPLING max(nx, ny))` covering `|k| <= top`, `kx >= 0`,
+/// with the stencil's margin, computed directly (one pass per axis), and interpolated
+/// between grid points by a tensor Lagrange stencil.
+struct CentredSpectrum {
+    step: f64,
+    /// Grid index of kx = 0 and ky = 0.
+    x0: i64,
+    y0: i64,
+    /// `values[a * ny_grid + b]`.
+    values: Vec<Complex<f64>>,
+    ny_grid: usize,
+    /// Barycentric weights of equispaced points, `(-1)^m C(q - 1, m)`.
+    bary: [f64; STENCIL],
+}
+
+impl CentredSpectrum {
+    fn new(pressure: &[f64], nx: usize, ny: usize, top: f64) -> Self {
+        let step = 2.0 * PI / (OVERSAMPLING * nx.max(ny) as f64);
+        let margin = (STENCIL / 2 + 1) as i64;
+        let reach = (top / step).ceil() as i64 + margin;
+        let (x0, y0) = (margin, reach);
+        let xs: Vec<f64> = (-margin..=reach).map(|a| a as f64 * step).collect();
+        let ys: Vec<f64> = (-reach..=reach).map(|b| b as f64 * step).collect();
+        let (cx, cy) = (0.5 * (nx as f64 - 1.0), 0.5 * (ny as f64 - 1.0));
+        // Along x, each loaded row: R[l][a], with the phases tabulated once.
+        let loaded: Vec<usize> = (0..ny)
+            .filter(|&l| pressure[l * nx..(l + 1) * nx].iter().any(|&p| p != 0.0))
+            .collect();
+        let phases = |ts: &[f64], n: usize, centre: f64| -> Vec<Complex<f64>> {
+            ts.iter()
+                .flat_map(|&t| {
+                    (0..n).map(move |m| Complex::from_polar(1.0, -t * (m as f64 - centre)))
+                })
+                .collect()
+        };
+        let phase_x = phases(&xs, nx, cx);
+        let along_x: Vec<Vec<Complex<f64>>> = loaded
+            .par_iter()
+            .map(|&l| {
+                let line = &pressure[l * nx..(l + 1) * nx];
+                phase_x
+                    .chunks_exact(nx)
+                    .map(|ph| {
+                        let mut sum = Complex::default();
+                        for (e, &p) in ph.iter().zip(line) {
+                            sum += e * p;
+                        }
+                        sum
+                    })
+                    .collect()
+            })
+            .collect();
+        // Along y, per kx: E~[a][b].
+        let phase_y = phases(&ys, ny, cy);
+        let ny_grid = ys.len();
+        let values: Vec<Complex<f64>> = (0..xs.len())
+            .into_par_iter()
+            .flat_map_iter(|a| {
+                let along_x = &along_x;
+                let loaded = &loaded;
+                phase_y.chunks_exact(ny).map(move |ph| {
+                    let mut sum = Complex::default();
+                    for (r, &l) in along_x.iter().zip(loaded) {
+                        sum += r[a] * ph[l];
+                    }
+                    sum
+                })
+            })
+            .collect();
+        let bary = std::array::from_fn(|m| {
+            let mut binomial = 1.0;
+            for j in 0..m {
+                binomial = binomial * (STENCIL - 1 - j) as f64 / (j + 1) as f64;
+            }
+            if m % 2 == 0 {
+                binomial
+            } else {
+                -binomial
+            }
+        });
+        CentredSpectrum {
+            step,
+            x0,
+            y0,
+            values,
+            ny_grid,
+            bary,
+        }
+    }
+
+    /// The stencil's first grid index and weights at position `u` (grid units).
+    fn stencil(&self, u: f64) -> (i64, [f64; STENCIL]) {
+        let first = u.floor() as i64 - (STENCIL as i64 / 2 - 1);
+        let mut w = [0.0; STENCIL];
+        let offset = u - first as f64;
+        if offset == offset.floor() {
+            w[offset as usize] = 1.0;
+            return (first, w);
+        }
+        let mut total = 0.0;
+        for (m, (wm, &b)) in w.iter_mut().zip(&self.bary).enumerate() {
+            *wm = b / (offset - m as f64);
+            total += *wm;
+        }
+        for wm in w.iter_mut() {
+            *wm /= total;
+        }
+        (first, w)
+    }
+
+    /// `E~` at `(tx, ty)`, `tx >= 0`, `|k|` within the grid's top.
+    fn at(&self, tx: f64, ty: f64) -> Complex<f64> {
+        let (ax, wx) = self.stencil(tx / self.step);
+        let (ay, wy) = self.stencil(ty / self.step);
+        let mut sum = Complex::default();
+        for (i, &w1) in wx.iter().enumerate() {
+            let a = (ax + i as i64 + self.x0) as usize;
+            let column = &self.values[a * self.ny_grid..][..self.ny_grid];
+            let mut inner = Complex::default();
+            for (j, &w2) in wy.iter().enumerate() {
+                inner += column[(ay + j as i64 + self.y0) as usize] * w2;
+            }
+            sum += inner * w1;
+        }
+        sum
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The interpolated centred spectrum equals its direct sum between grid points.
+    #[test]
+    fn centred_spectrum_interpolates_to_its_direct_sum() {
+        let (nx, ny) = (23, 17);
+        let pressure: Vec<f64> = (0..nx * ny)
+            .map(|n| ((n * 7919) % 101) as f64 / 101.0 - 0.3)
+            .collect();
+        let top = 1.3;
+        let spectrum = CentredSpectrum::new(&pressure, nx, ny, top);
+        let (cx, cy) = (0.5 * (nx as f64 - 1.0), 0.5 * (ny as f64 - 1.0));
+        let scale: f64 = pressure.iter().map(|p| p.abs()).sum();
+        let mut worst: f64 = 0.0;
+        for (tx, ty) in [
+            (0.0, 0.0),
+            (0.013, -0.4),
+            (0.9, 0.77),
+            (1.29, 0.0),
+            (0.31, 1.27),
+        ] {
+            let mut direct = Complex::default();
+            for l in 0..ny {
+                for m in 0..nx {
+                    let phase = -(tx * (m as f64 - cx) + ty * (l as f64 - cy));
+                    direct += Complex::from_polar(pressure[l * nx + m], phase);
+                }
+            }
+            worst = worst.max((spectrum.at(tx, ty) - direct).norm() / scale);
+        }
+        assert!(worst < 1e-13, "{worst:e}");
+    }
 
     /// The interpolant on the shared panels reproduces exponentials of every decay
     /// length to the bound of the module doc.
