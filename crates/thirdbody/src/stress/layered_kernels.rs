@@ -536,7 +536,31 @@ impl LayeredStressKernels {
                 taper: false,
                 edge: false,
             };
-            self.add_banded_remainder(lattice, lambda, top, &remainder, table);
+            let work = row
+                .as_ref()
+                .filter(|(source, _)| row_lattice(lattice, source))
+                .and_then(|(source, _)| source.kept::<RowWork>());
+            match (work, row) {
+                (Some(work), Some((_, row))) if work.short.band_split().is_some() => {
+                    let h = lattice.cell;
+                    let kxh = work.short.band_split().unwrap_or(SUB_CELL_SPLIT);
+                    // Bands down to kx on small boxes, in the table.
+                    self.add_bands(lattice, lambda, top, &remainder, table, kxh / h);
+                    // Below kx from the rows.
+                    let at = |solved: &[LayeredSolver], b: usize, theta: f64| {
+                        self.solved_remainder(&solved[b], layer, z, carrier, r1, mu, theta / h)
+                    };
+                    let theta_cut = (ALIAS_DECAY * h / lambda).min(BAND_EDGE * kxh);
+                    work.short.add_band(
+                        theta_cut,
+                        |b, theta| at(&work.short_solved, b, theta),
+                        row,
+                    );
+                    work.long
+                        .add(|b, theta| at(&work.long_solved, b, theta), row);
+                }
+                _ => self.add_banded_remainder(lattice, lambda, top, &remainder, table),
+            }
             return;
         }
         let short_waves = Pass::Short {
@@ -610,23 +634,39 @@ impl LayeredStressKernels {
         table: &mut InfluenceTable,
     ) {
         let h = lattice.cell;
-        let k1 = SUB_CELL_SPLIT / h;
-        let k0 = split_wavenumber(lattice).min(k1);
-        let mut add = |reach: f64, k_hi: f64, pass: Pass| {
-            self.add_near(lattice, reach, lambda, k_hi, remainder, pass, table);
-        };
-        add(REACH / (k1 * h), k1, top);
-        let mut k_hi = k1;
-        while k_hi > k0 {
-            let k_lo = (k_hi / BAND_RATIO).max(k0);
-            add(REACH / (k_lo * h), k_hi, Pass::Band { low: k_lo * h });
-            k_hi = k_lo;
-        }
+        let k0 = split_wavenumber(lattice).min(SUB_CELL_SPLIT / h);
+        self.add_bands(lattice, lambda, top, remainder, table, k0);
         let long = long_wave_kernels(lattice, k0, remainder, &mut table.scratch.long_wave);
         for (t, l) in table.values.iter_mut().zip(long) {
             for (v, a) in t.iter_mut().zip(l) {
                 *v += a;
             }
+        }
+    }
+
+    /// The short waves above `k1 = SUB_CELL_SPLIT / cell` (pass `top`) and the bands
+    /// below it down to `k_stop` ([`Self::add_banded_remainder`]), added to `table`.
+    fn add_bands(
+        &self,
+        lattice: &OffsetLattice,
+        lambda: f64,
+        top: Pass,
+        remainder: &Radial,
+        table: &mut InfluenceTable,
+        k_stop: f64,
+    ) {
+        let h = lattice.cell;
+        let k1 = SUB_CELL_SPLIT / h;
+        let k_stop = k_stop.min(k1);
+        let mut add = |reach: f64, k_hi: f64, pass: Pass| {
+            self.add_near(lattice, reach, lambda, k_hi, remainder, pass, table);
+        };
+        add(REACH / (k1 * h), k1, top);
+        let mut k_hi = k1;
+        while k_hi > k_stop {
+            let k_lo = (k_hi / BAND_RATIO).max(k_stop);
+            add(REACH / (k_lo * h), k_hi, Pass::Band { low: k_lo * h });
+            k_hi = k_lo;
         }
     }
 
@@ -856,21 +896,40 @@ impl StressKernels for LayeredStressKernels {
             return;
         }
         let h = lattice.cell;
-        let theta_top = depths
+        let k1h = split_wavenumber(lattice) * h;
+        let lambdas: Vec<f64> = depths
             .iter()
             .filter(|&&z| self.method_at(z, lattice) == StressMethod::Full)
             .map(|&z| self.decay_length(self.layer(z), z))
-            .filter(|&lambda| !needs_bands(lattice, lambda))
+            .collect();
+        let mut theta_top = lambdas
+            .iter()
+            .filter(|&&lambda| !needs_bands(lattice, lambda))
             .map(|lambda| ALIAS_DECAY * h / lambda)
             .fold(0.0, f64::max);
+        // Depths summed in bands take the bands below `kx` from the rows: the
+        // largest band split whose band edge needs no aliases.
+        let band = lambdas
+            .iter()
+            .any(|&lambda| needs_bands(lattice, lambda))
+            .then(|| {
+                let mut kxh = SUB_CELL_SPLIT;
+                while BAND_EDGE * kxh >= ROW_BAND_TOP {
+                    kxh /= BAND_RATIO;
+                }
+                kxh
+            })
+            .filter(|&kxh| kxh > k1h);
+        if let Some(kxh) = band {
+            theta_top = theta_top.max(BAND_EDGE * kxh);
+        }
         if theta_top == 0.0 || theta_top >= PI {
             return;
         }
-        let k1h = split_wavenumber(lattice) * h;
         let len = box_cells(span_in_cells(lattice), k1h);
         let frac_y = lattice.y_first - lattice.y_first.floor();
         let spectrum = source.spectrum(len, frac_y);
-        let short = ShortWaveRow::new(&spectrum, len, frac_y, source.nx, k1h, theta_top);
+        let short = ShortWaveRow::new(&spectrum, len, frac_y, source.nx, k1h, theta_top, band);
         let long = LongWaveRow::new(
             source.pressure(),
             source.nx,
@@ -1161,6 +1220,11 @@ fn remainder_on_row(
         }
     }
 }
+
+/// The largest band edge (`BAND_EDGE kx h`) of the part of a banded depth's short waves
+/// that an XZ section takes from its rows: below pi, so that no aliases are needed,
+/// and the rows' panels resolve `chi(k / kx)` (in the rows' weights, exact).
+const ROW_BAND_TOP: f64 = 2.5;
 
 /// What an XZ section's depths share ([`StressKernels::prepare_row`]): the short and
 /// long waves' rows per node and, per node, the stack solved at its wavenumber (a

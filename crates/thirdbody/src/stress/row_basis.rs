@@ -90,6 +90,11 @@ pub(super) struct ShortWaveRow {
     nodes: Vec<f64>,
     /// `psi[(node * ANGULAR + a) * nx + i]`.
     psi: Vec<f64>,
+    /// The band family's split `kx h` and its nodes (the first of `nodes`).
+    band: Option<(f64, usize)>,
+    /// The band family's rows, as `psi` with the share `chi(k / kx) - chi(k / k1)`
+    /// instead of `1 - chi(k / k1)`.
+    psi_band: Vec<f64>,
     nx: usize,
 }
 
@@ -105,6 +110,7 @@ impl ShortWaveRow {
         nx: usize,
         k1h: f64,
         theta_top: f64,
+        band: Option<f64>,
     ) -> Self {
         assert!(theta_top < PI, "the row basis sums no aliases");
         let panels = geometric_panels(0.01 * k1h, theta_top);
@@ -112,6 +118,11 @@ impl ShortWaveRow {
         let nodes: Vec<f64> = panel_points.iter().flatten().copied().collect();
         let bary = barycentric_weights();
         let count = nodes.len() * ANGULAR;
+        // The band family's wavenumbers end at `BAND_EDGE kx h`, within the rows.
+        let band = band.filter(|&kxh| BAND_EDGE * kxh <= theta_top);
+        let band_edge = band.map_or(0.0, |kxh| BAND_EDGE * kxh);
+        let band_nodes = panels.partition_point(|&(lo, _)| lo < band_edge) * POINTS;
+        let total = count + band_nodes * ANGULAR;
         let base = |j: usize| {
             let j = if j <= len / 2 {
                 j as f64
@@ -149,7 +160,7 @@ impl ShortWaveRow {
                     return Vec::new();
                 }
                 let wx = sinc(0.5 * tx) * norm;
-                let mut sums = vec![Complex::default(); count];
+                let mut sums = vec![Complex::default(); total];
                 for (jy, (&p, &wy)) in spectrum.column(jx).iter().zip(&weight_y).enumerate() {
                     let ty = base(jy);
                     let theta = (tx * tx + ty * ty).sqrt();
@@ -169,16 +180,24 @@ impl ShortWaveRow {
                     } else {
                         (1.0, 0.0)
                     };
-                    let v = p * wy * (wx * high_pass);
+                    let raw = p * wy * wx;
+                    let v = raw * high_pass;
                     let factors = [c * c, s * s, c * s, c, s];
                     let panel = locate(theta);
                     let l = lagrange(&panel_points[panel], &bary, theta);
-                    let at = &mut sums[panel * POINTS * ANGULAR..][..POINTS * ANGULAR];
-                    for (slot, &lb) in at.chunks_exact_mut(ANGULAR).zip(&l) {
-                        let u = v * lb;
-                        for (o, &f) in slot.iter_mut().zip(&factors) {
-                            *o += u * f;
+                    let mut accumulate = |first: usize, v: Complex<f64>| {
+                        let at = &mut sums[first + panel * POINTS * ANGULAR..][..POINTS * ANGULAR];
+                        for (slot, &lb) in at.chunks_exact_mut(ANGULAR).zip(&l) {
+                            let u = v * lb;
+                            for (o, &f) in slot.iter_mut().zip(&factors) {
+                                *o += u * f;
+                            }
                         }
+                    };
+                    accumulate(0, v);
+                    if let Some(kxh) = band.filter(|_| theta < band_edge) {
+                        // chi(k / kx) - chi(k / k1), exactly.
+                        accumulate(count, raw * (high_pass - short_wave_share(theta, kxh)));
                     }
                 }
                 sums
@@ -186,7 +205,7 @@ impl ShortWaveRow {
             .collect();
         // Along x: one inverse transform per node and angular row.
         let inverse = RealFftPlanner::<f64>::new().plan_fft_inverse(len);
-        let psi: Vec<f64> = (0..count)
+        let mut psi: Vec<f64> = (0..total)
             .into_par_iter()
             .flat_map_iter(|na| {
                 let shear = na % ANGULAR >= 3;
@@ -211,10 +230,13 @@ impl ShortWaveRow {
                 line
             })
             .collect();
+        let psi_band = psi.split_off(count * nx);
         ShortWaveRow {
             panels,
             nodes,
             psi,
+            band: band.map(|kxh| (kxh, band_nodes)),
+            psi_band,
             nx,
         }
     }
@@ -227,6 +249,34 @@ impl ShortWaveRow {
     /// The largest theta the rows hold.
     pub(super) fn top(&self) -> f64 {
         self.panels.last().map_or(0.0, |p| p.1)
+    }
+
+    /// The band family's split `kx h`, if it has one.
+    pub(super) fn band_split(&self) -> Option<f64> {
+        self.band.map(|(kxh, _)| kxh)
+    }
+
+    /// Adds to `row` the share `chi(k / kx) - chi(k / k1)` of the short waves
+    /// ([`Self::add`] with the band family's rows): the part of the remainder below the
+    /// bands a depth sums on small boxes.
+    pub(super) fn add_band(
+        &self,
+        theta_cut: f64,
+        mut transfer: impl FnMut(usize, f64) -> [f64; 4],
+        row: &mut [Vec<f64>; COMPONENTS],
+    ) {
+        let Some((_, band_nodes)) = self.band else {
+            return;
+        };
+        let used =
+            (self.panels.partition_point(|&(lo, _)| lo < theta_cut) * POINTS).min(band_nodes);
+        add_rows(
+            &self.nodes[..used],
+            &self.psi_band,
+            self.nx,
+            &mut transfer,
+            row,
+        );
     }
 
     /// Adds to `row` the short waves of the wave-frame functions `transfer(node,
