@@ -197,6 +197,8 @@ pub struct InfluenceTable {
 #[derive(Debug, Clone, Default)]
 pub struct KernelScratch {
     pub(super) long_wave: super::long_wave::LongWaveBasis,
+    /// Love's kernels for nu = 0 and their derivative in nu, refilled per depth.
+    pub(super) love_split: Vec<InfluenceTable>,
 }
 
 impl InfluenceTable {

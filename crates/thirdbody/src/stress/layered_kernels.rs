@@ -282,6 +282,15 @@ impl LayeredStressKernels {
     /// (a stiff layer's `(E / E_min) h`) included: the error is `O((e L)^2)`, about
     /// 1e-12.
     fn long_wave_transfer(&self, solver: &mut LayeredSolver, layer: usize, z: f64) -> [f64; 4] {
+        let e = 1e-6 / self.longest_length(z);
+        let a = solver.plane_response(e, layer, z).stress;
+        let b = solver.plane_response(2.0 * e, layer, z).stress;
+        std::array::from_fn(|q| 2.0 * a[q] - b[q])
+    }
+
+    /// The longest length in the transfer at depth z: z plus every layer's thickness,
+    /// a stiff layer's stretched to its membrane length `(E / E_min) h`.
+    fn longest_length(&self, z: f64) -> f64 {
         let softest = self
             .stack
             .layers
@@ -298,10 +307,7 @@ impl LayeredStressKernels {
             .iter()
             .map(|p| p.thickness * (p.material.young / softest).max(1.0))
             .sum::<f64>();
-        let e = 1e-6 / length;
-        let a = solver.plane_response(e, layer, z).stress;
-        let b = solver.plane_response(2.0 * e, layer, z).stress;
-        std::array::from_fn(|q| 2.0 * a[q] - b[q])
+        length
     }
 
     /// The long-wave in-plane stresses of the layer minus Love's, `(d_xi, d_eta)`:
@@ -468,15 +474,22 @@ impl LayeredStressKernels {
         let [al, be, ga, ep] = r1.map(|r| r / mu);
         // Love's kernels for nu = 0 and their derivative in nu at a depth (they are
         // linear in nu: `G(1/2) - G(0)` is half the derivative).
-        let love_split = |depth: f64| {
-            let mut zero = InfluenceTable::default();
-            let mut slope = InfluenceTable::default();
-            HomogeneousStressKernels::fill_poisson_split(depth, lattice, &mut zero, &mut slope);
-            (zero, slope)
+        let love_split = |depth: f64, zero: &mut InfluenceTable, slope: &mut InfluenceTable| {
+            HomogeneousStressKernels::fill_poisson_split(depth, lattice, zero, slope);
         };
-        let (zero, dnu) = love_split(lambda);
-        let slope_pair = (mu != lambda).then(|| love_split(mu));
-        let (zero_s, dnu_s) = slope_pair.as_ref().map_or((&zero, &dnu), |(z, h)| (z, h));
+        // The split tables are kept between depths (the table's scratch, one per
+        // thread): allocating them per depth cost page faults.
+        let mut split = std::mem::take(&mut table.scratch.love_split);
+        split.resize_with(2, InfluenceTable::default);
+        let (zero, dnu) = split.split_at_mut(1);
+        love_split(lambda, &mut zero[0], &mut dnu[0]);
+        let slope_pair = (mu != lambda).then(|| {
+            let (mut zero, mut slope) = (InfluenceTable::default(), InfluenceTable::default());
+            love_split(mu, &mut zero, &mut slope);
+            (zero, slope)
+        });
+        let (zero, dnu) = (&split[0], &split[1]);
+        let (zero_s, dnu_s) = slope_pair.as_ref().map_or((zero, dnu), |(z, h)| (z, h));
         if lambda == z {
             // Below the top layer the carriers' depth is z: Love's kernels of the
             // depth's material are `G(0) + nu G'`.
@@ -489,26 +502,53 @@ impl LayeredStressKernels {
         } else {
             HomogeneousStressKernels { material }.fill(z, lattice, table);
         }
-        for n in 0..lattice.cols * lattice.rows {
-            // A = -(G(1/2) - G(0)): transfer e^{-k l} (s^2, c^2, -c s) in (xx, yy, xy);
-            // B: transfer k l e^{-k l} (c^2, s^2, c s); G(0)'s shears: i k l e^{-k l} (c, s).
-            let a = |c: usize| -0.5 * dnu.values[c][n];
-            let (axx, ayy, axy) = (a(0), a(1), a(3));
-            // The same at the slope's depth mu.
-            let a_s = |c: usize| -0.5 * dnu_s.values[c][n];
-            let (bxx, byy, bxy) = (
-                zero_s.values[0][n] + a_s(1),
-                zero_s.values[1][n] + a_s(0),
-                zero_s.values[3][n] - a_s(3),
-            );
-            let v = &mut table.values;
-            v[0][n] += d_xi * ayy + d_eta * axx + al * bxx + be * byy;
-            v[1][n] += d_xi * axx + d_eta * ayy + al * byy + be * bxx;
-            v[2][n] += ga * (bxx + byy);
-            v[3][n] += -(d_xi - d_eta) * axy + (al - be) * bxy;
-            v[4][n] += ep * zero_s.values[4][n];
-            v[5][n] += ep * zero_s.values[5][n];
+        // A = -(G(1/2) - G(0)): transfer e^{-k l} (s^2, c^2, -c s) in (xx, yy, xy);
+        // B: transfer k l e^{-k l} (c^2, s^2, c s); G(0)'s shears: i k l e^{-k l} (c, s).
+        // (A at lambda, B at the slope's depth mu; one pass per component.)
+        {
+            let [a0, a1, _, a3, _, _] = &dnu.values;
+            let [s0, s1, _, s3, _, _] = &dnu_s.values;
+            let [z0, z1, _, z3, z4, z5] = &zero_s.values;
+            let [v0, v1, v2, v3, v4, v5] = &mut table.values;
+            let (hx, he) = (-0.5 * d_xi, -0.5 * d_eta);
+            for (((((v, a0), a1), s0), s1), (z0, z1)) in v0
+                .iter_mut()
+                .zip(a0)
+                .zip(a1)
+                .zip(s0)
+                .zip(s1)
+                .zip(z0.iter().zip(z1))
+            {
+                let (bxx, byy) = (z0 - 0.5 * s1, z1 - 0.5 * s0);
+                *v += hx * a1 + he * a0 + al * bxx + be * byy;
+            }
+            for (((((v, a0), a1), s0), s1), (z0, z1)) in v1
+                .iter_mut()
+                .zip(a0)
+                .zip(a1)
+                .zip(s0)
+                .zip(s1)
+                .zip(z0.iter().zip(z1))
+            {
+                let (bxx, byy) = (z0 - 0.5 * s1, z1 - 0.5 * s0);
+                *v += hx * a0 + he * a1 + al * byy + be * bxx;
+            }
+            for ((((v, s0), s1), z0), z1) in v2.iter_mut().zip(s0).zip(s1).zip(z0).zip(z1) {
+                *v += ga * (z0 + z1 - 0.5 * (s0 + s1));
+            }
+            let (ha, ab) = (0.5 * (d_xi - d_eta), al - be);
+            for (((v, a3), s3), z3) in v3.iter_mut().zip(a3).zip(s3).zip(z3) {
+                *v += ha * a3 + ab * (z3 + 0.5 * s3);
+            }
+            for (v, z) in v4.iter_mut().zip(z4) {
+                *v += ep * z;
+            }
+            for (v, z) in v5.iter_mut().zip(z5) {
+                *v += ep * z;
+            }
         }
+        drop(slope_pair);
+        table.scratch.love_split = split;
         if method == StressMethod::ThinFilm {
             return;
         }
@@ -937,6 +977,7 @@ impl StressKernels for LayeredStressKernels {
             source.offset,
             k1h,
             offset_reach(lattice),
+            self.longest_length(depths.iter().fold(0.0, |m: f64, &z| m.max(z))) / h,
         );
         let solved = |thetas: &[f64]| -> Vec<LayeredSolver> {
             thetas
@@ -1470,49 +1511,97 @@ impl BoxSpectrum {
 
 /// The four wave-frame functions of `theta = k h` on Chebyshev panels, evaluated
 /// together (the lattice sum spends most of its time here). Panels double in width
-/// from `theta_graded` up to the uniform width: near k = 0 a stiff coating's transfer
-/// varies on the scale of its membrane length, far below the uniform width.
+/// from `theta_graded` up to the width `2 h / length` of the transfer's exponentials
+/// (near k = 0 a stiff coating's transfer varies on the scale of its membrane length,
+/// far below that width), keep that width up to four times it, then grow by
+/// `GEOMETRIC_RATIO`: on `[a, 1.25 a]` the interpolant of any `e^{-theta L}` is within
+/// `(0.25 a L / 4)^20 / 20! e^{-a L}`, at most 1e-26 of its value at 0 (the same
+/// bound as the XZ rows' panels, `super::row_basis`), so the wide tables of thin
+/// layers (wavenumbers up to `32 h / lambda`, hundreds of the width) take tens of
+/// panels instead of hundreds.
 struct RadialTable {
     graded: Vec<InterleavedPanels<4>>,
     theta_graded: f64,
     uniform_from: f64,
     uniform: Option<InterleavedPanels<4>>,
+    geometric_from: f64,
+    /// The geometric panels' lower ends and interpolants.
+    geometric: Vec<(f64, InterleavedPanels<4>)>,
 }
+
+/// The growth of the radial table's panels beyond four times the uniform width.
+const GEOMETRIC_RATIO: f64 = 1.25;
 
 impl RadialTable {
     /// Tabulates `radial(theta / h)` on `[0, theta_top]`: graded panels from
     /// `theta_graded`, then panels no wider than the scale `h / length` of its
-    /// exponentials.
+    /// exponentials, then geometric ones.
     fn new(theta_top: f64, h: f64, length: f64, theta_graded: f64, radial: &Radial) -> Self {
         let width = (2.0 * h / length.max(1e-300)).min(PI);
-        let build = |lo: f64, hi: f64, panels: usize| {
-            let points = ChebyshevPanels::points(lo, hi, panels, PANEL_DEGREE);
-            let ks: Vec<f64> = points.iter().map(|&t| t / h).collect();
-            let values = radial.eval_all(&ks);
-            InterleavedPanels::new(std::array::from_fn(|q| {
-                let v: Vec<f64> = values.iter().map(|r| r[q]).collect();
-                ChebyshevPanels::from_values(lo, hi, panels, PANEL_DEGREE, &v)
-            }))
-        };
-        let mut graded = vec![build(0.0, theta_graded, 1)];
+        // The panels first, then one parallel evaluation of the transfer at all points.
+        let mut spans: Vec<(f64, f64, usize)> = vec![(0.0, theta_graded, 1)];
         let mut lo = theta_graded;
         while lo < width && lo < theta_top {
-            graded.push(build(lo, 2.0 * lo, 1));
+            spans.push((lo, 2.0 * lo, 1));
             lo *= 2.0;
         }
-        let uniform = (lo < theta_top).then(|| {
-            let panels = (((theta_top - lo) / width).ceil() as usize).max(1);
-            build(lo, lo + panels as f64 * width, panels)
+        let graded_count = spans.len();
+        let uniform_from = lo;
+        let geometric_from = (4.0 * width).max(lo).min(theta_top.max(lo));
+        if lo < geometric_from {
+            let panels = (((geometric_from - lo) / width).ceil() as usize).max(1);
+            spans.push((lo, lo + panels as f64 * width, panels));
+            lo += panels as f64 * width;
+        }
+        let uniform_count = spans.len() - graded_count;
+        let geometric_from = lo;
+        while lo < theta_top {
+            let hi = lo * GEOMETRIC_RATIO;
+            spans.push((lo, hi, 1));
+            lo = hi;
+        }
+        let points: Vec<f64> = spans
+            .iter()
+            .flat_map(|&(lo, hi, n)| ChebyshevPanels::points(lo, hi, n, PANEL_DEGREE))
+            .collect();
+        let ks: Vec<f64> = points.iter().map(|&t| t / h).collect();
+        let values = radial.eval_all(&ks);
+        let mut offset = 0;
+        let mut tables = spans.iter().map(|&(lo, hi, n)| {
+            let v = &values[offset..offset + n * PANEL_DEGREE];
+            offset += n * PANEL_DEGREE;
+            (
+                lo,
+                InterleavedPanels::new(std::array::from_fn(|q| {
+                    let column: Vec<f64> = v.iter().map(|r| r[q]).collect();
+                    ChebyshevPanels::from_values(lo, hi, n, PANEL_DEGREE, &column)
+                })),
+            )
         });
+        let graded: Vec<InterleavedPanels<4>> =
+            tables.by_ref().take(graded_count).map(|(_, t)| t).collect();
+        let uniform = (uniform_count > 0)
+            .then(|| tables.next().map(|(_, t)| t))
+            .flatten();
+        let geometric: Vec<(f64, InterleavedPanels<4>)> = tables.collect();
         RadialTable {
             graded,
             theta_graded,
-            uniform_from: lo,
+            uniform_from,
             uniform,
+            geometric_from,
+            geometric,
         }
     }
 
     fn eval(&self, theta: f64) -> [f64; 4] {
+        if theta >= self.geometric_from && !self.geometric.is_empty() {
+            let i = self
+                .geometric
+                .partition_point(|&(lo, _)| lo <= theta)
+                .saturating_sub(1);
+            return self.geometric[i].1.eval(theta);
+        }
         if theta >= self.uniform_from {
             if let Some(u) = &self.uniform {
                 return u.eval(theta);

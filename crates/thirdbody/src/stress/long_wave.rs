@@ -156,7 +156,7 @@ impl LongWaveBasis {
             .hypot(extent(lattice.y_first, lattice.rows))
             .max(h);
 
-        let nodes = polar_nodes(k_edge, r_max);
+        let nodes = polar_nodes(k_edge, r_max, 0.0);
 
         // Angular modes per k node of the unit transfers (times the weight).
         let dft = rustfft::FftPlanner::<f64>::new().plan_fft_forward(ANGLES);
@@ -203,12 +203,19 @@ impl LongWaveBasis {
 /// The k nodes of a polar integral over `k < k_edge` whose integrand holds `e^{i k.X}`
 /// for `|X|` up to `r_max`, and their weights times k (the polar Jacobian):
 /// Gauss–Legendre on panels graded geometrically towards k = 0 and no wider than `8 /
-/// r_max`.
-pub(super) fn polar_nodes(k_edge: f64, r_max: f64) -> Vec<(f64, f64)> {
+/// r_max`. The grading stops at `k_edge 2^-GRADING`, or above it at `floor` (> 0): a
+/// first panel `[0, floor]` integrates the transfer exactly to rounding once `floor`
+/// is far below the inverse of its longest length.
+pub(super) fn polar_nodes(k_edge: f64, r_max: f64, floor: f64) -> Vec<(f64, f64)> {
     let rule = GaussLegendre::new(K_POINTS);
     let widest = 8.0 / r_max;
     let mut bounds = vec![0.0];
-    for i in (0..=GRADING).rev() {
+    let levels = if floor > 0.0 {
+        ((k_edge / floor).log2().ceil() as i32).clamp(0, GRADING)
+    } else {
+        GRADING
+    };
+    for i in (0..=levels).rev() {
         let hi = k_edge * 2f64.powi(-i);
         let lo = *bounds.last().unwrap_or(&0.0);
         let pieces = ((hi - lo) / widest).ceil().max(1.0) as usize;

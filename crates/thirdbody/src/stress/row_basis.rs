@@ -161,11 +161,15 @@ impl ShortWaveRow {
                 }
                 let wx = sinc(0.5 * tx) * norm;
                 let mut sums = vec![Complex::default(); total];
-                for (jy, (&p, &wy)) in spectrum.column(jx).iter().zip(&weight_y).enumerate() {
+                let column = spectrum.column(jx);
+                // Rows +ty and -ty share theta, c and the Lagrange weights, and s
+                // changes sign: their sum takes the even factors, their difference the
+                // odd ones.
+                for jy in 0..=len / 2 {
                     let ty = base(jy);
                     let theta = (tx * tx + ty * ty).sqrt();
                     if theta > theta_top {
-                        continue;
+                        break;
                     }
                     let high_pass = if theta > BAND_EDGE * k1h {
                         1.0
@@ -180,24 +184,33 @@ impl ShortWaveRow {
                     } else {
                         (1.0, 0.0)
                     };
-                    let raw = p * wy * wx;
-                    let v = raw * high_pass;
-                    let factors = [c * c, s * s, c * s, c, s];
+                    let plus = column[jy] * weight_y[jy] * wx;
+                    let partner = len - jy;
+                    let minus = if jy == 0 || partner == jy {
+                        Complex::default()
+                    } else {
+                        column[partner] * weight_y[partner] * wx
+                    };
+                    let (even, odd) = (plus + minus, plus - minus);
                     let panel = locate(theta);
                     let l = lagrange(&panel_points[panel], &bary, theta);
-                    let mut accumulate = |first: usize, v: Complex<f64>| {
+                    let (cc, ss, cs) = (c * c, s * s, c * s);
+                    let mut accumulate = |first: usize, scale: f64| {
+                        let (even, odd) = (even * scale, odd * scale);
                         let at = &mut sums[first + panel * POINTS * ANGULAR..][..POINTS * ANGULAR];
                         for (slot, &lb) in at.chunks_exact_mut(ANGULAR).zip(&l) {
-                            let u = v * lb;
-                            for (o, &f) in slot.iter_mut().zip(&factors) {
-                                *o += u * f;
-                            }
+                            let (ue, uo) = (even * lb, odd * lb);
+                            slot[0] += ue * cc;
+                            slot[1] += ue * ss;
+                            slot[2] += uo * cs;
+                            slot[3] += ue * c;
+                            slot[4] += uo * s;
                         }
                     };
-                    accumulate(0, v);
+                    accumulate(0, high_pass);
                     if let Some(kxh) = band.filter(|_| theta < band_edge) {
                         // chi(k / kx) - chi(k / k1), exactly.
-                        accumulate(count, raw * (high_pass - short_wave_share(theta, kxh)));
+                        accumulate(count, high_pass - short_wave_share(theta, kxh));
                     }
                 }
                 sums
@@ -324,7 +337,8 @@ impl LongWaveRow {
     /// The rows for outputs at x offsets `0..nx` cells from source column 0 and `offset`
     /// cells along y from source row 0, of the pressure `p[l * nx + m]` on `ny` rows,
     /// for the long-wave share `chi(theta / k1h)` (band-limited to `BAND_EDGE k1h`), with
-    /// offsets at most `r_max` cells from a source.
+    /// offsets at most `r_max` cells from a source, for transfers whose longest length
+    /// is `longest` cells (their panels graded down to a sixteenth of its inverse).
     pub(super) fn new(
         pressure: &[f64],
         nx: usize,
@@ -332,9 +346,10 @@ impl LongWaveRow {
         offset: f64,
         k1h: f64,
         r_max: f64,
+        longest: f64,
     ) -> Self {
         let k_edge = BAND_EDGE * k1h;
-        let nodes = super::long_wave::polar_nodes(k_edge, r_max);
+        let nodes = super::long_wave::polar_nodes(k_edge, r_max, 1.0 / (16.0 * longest));
         let spectrum = CentredSpectrum::new(pressure, nx, ny, k_edge);
         let (cx, cy) = (0.5 * (nx as f64 - 1.0), 0.5 * (ny as f64 - 1.0));
         let sinc = |t: f64| {
