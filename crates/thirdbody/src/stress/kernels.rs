@@ -585,6 +585,33 @@ impl HomogeneousStressKernels {
         corners.difference(&both.0, lattice, base);
         corners.difference(&both.1, lattice, slope);
     }
+
+    /// The table of `combine(G(0), G')` at depth z, Love's kernels for nu = 0 and
+    /// their derivative in nu ([`Self::fill_poisson_split`]) combined linearly, by
+    /// the same map at every offset: applied to the corner primitives before their
+    /// four-corner sums (which are linear and the same for every component of one
+    /// parity), so one table is summed instead of two. `combine` may mix only
+    /// components of the same parity in x and y (`sigma_x`, `sigma_y`, `sigma_z`
+    /// together; each shear with itself).
+    pub(crate) fn fill_poisson_combined(
+        z: f64,
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+        combine: impl Fn(&[f64; COMPONENTS], &[f64; COMPONENTS]) -> [f64; COMPONENTS],
+    ) {
+        let corners = FoldedCorners::new(lattice);
+        let (zero, slope) = corners.primitives2(|u, v| corner_primitives_split(u, v, z));
+        let n = zero[0].len();
+        let mut combined: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; n]);
+        for i in 0..n {
+            let g0 = std::array::from_fn(|c| zero[c][i]);
+            let g1 = std::array::from_fn(|c| slope[c][i]);
+            for (dst, v) in combined.iter_mut().zip(combine(&g0, &g1)) {
+                dst[i] = v;
+            }
+        }
+        corners.difference(&combined, lattice, table);
+    }
 }
 
 impl FoldedCorners {

@@ -474,6 +474,156 @@ impl LayeredStressKernels {
         let [al, be, ga, ep] = r1.map(|r| r / mu);
         // Love's kernels for nu = 0 and their derivative in nu at a depth (they are
         // linear in nu: `G(1/2) - G(0)` is half the derivative).
+        if lambda == z && mu == lambda {
+            // Below the top layer the carriers' depth is z: Love's kernels of the
+            // depth's material are `G(0) + nu G'`, and the carriers combine the same
+            // two tables, so all is one combination of their corner primitives.
+            let nu = material.poisson;
+            HomogeneousStressKernels::fill_poisson_combined(z, lattice, table, |g0, g1| {
+                let (axx, ayy, axy) = (-0.5 * g1[0], -0.5 * g1[1], -0.5 * g1[3]);
+                let (bxx, byy, bxy) = (g0[0] + ayy, g0[1] + axx, g0[3] - axy);
+                let base: [f64; COMPONENTS] = std::array::from_fn(|c| g0[c] + nu * g1[c]);
+                [
+                    base[0] + d_xi * ayy + d_eta * axx + al * bxx + be * byy,
+                    base[1] + d_xi * axx + d_eta * ayy + al * byy + be * bxx,
+                    base[2] + ga * (bxx + byy),
+                    base[3] - (d_xi - d_eta) * axy + (al - be) * bxy,
+                    base[4] + ep * g0[4],
+                    base[5] + ep * g0[5],
+                ]
+            });
+        } else {
+            self.fill_love_and_carriers(z, lattice, table, material, (carrier, r1), mu);
+        }
+        if method == StressMethod::ThinFilm {
+            return;
+        }
+        // 3. The remainder, O(k^2) at k = 0: its short waves by a periodic lattice
+        // sum, its long waves by Hankel transforms.
+        let eval = |solver: &mut LayeredSolver, k: f64| {
+            self.remainder(solver, layer, z, carrier, r1, mu, k)
+        };
+        let remainder = Radial {
+            stack: &self.stack,
+            eval: &eval,
+        };
+        if method == StressMethod::SubCell {
+            let top = Pass::Short {
+                taper: true,
+                edge: z > 0.0,
+            };
+            self.add_banded_remainder(lattice, lambda, top, &remainder, table);
+            return;
+        }
+        let k1 = split_wavenumber(lattice);
+        if needs_bands(lattice, lambda) {
+            // The short waves need aliases on a box of `REACH / k1` cells: in bands.
+            let top = Pass::Short {
+                taper: false,
+                edge: false,
+            };
+            let work = row
+                .as_ref()
+                .filter(|(source, _)| row_lattice(lattice, source))
+                .and_then(|(source, _)| source.kept::<RowWork>());
+            let rows = work.and_then(|w| Some((w.band_split?, w.remainder_at(z)?)));
+            match (rows, row) {
+                (Some((kxh, rows)), Some((_, row))) => {
+                    // Bands down to kx on small boxes, in the table; below kx from the
+                    // rows.
+                    self.add_bands(lattice, lambda, top, &remainder, table, kxh / lattice.cell);
+                    add_to_row(row, rows);
+                }
+                _ => self.add_banded_remainder(lattice, lambda, top, &remainder, table),
+            }
+            return;
+        }
+        let short_waves = Pass::Short {
+            taper: false,
+            edge: false,
+        };
+        let thickness = self.stack.thickness();
+        match row {
+            Some((source, row)) if row_lattice(lattice, source) => {
+                match source.kept::<RowWork>().and_then(|w| w.remainder_at(z)) {
+                    Some(rows) => {
+                        add_to_row(row, rows);
+                        return;
+                    }
+                    _ => remainder_on_row(
+                        lattice,
+                        lambda,
+                        thickness,
+                        k1,
+                        &remainder,
+                        short_waves,
+                        source,
+                        row,
+                    ),
+                }
+                let basis = &mut table.scratch.long_wave;
+                long_wave_on_row(lattice, k1, &remainder, basis, source, row);
+            }
+            _ => {
+                let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
+                let short =
+                    remainder_on_lattice(lattice, lambda, thickness, k1, &remainder, short_waves);
+                for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
+                    for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
+                        *v += a + b;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The remainder in bands, added to `table`: split at `k1 = SUB_CELL_SPLIT /
+    /// cell`, its short waves (pass `top`) on the offsets within their reach
+    /// (`REACH / SUB_CELL_SPLIT` cells) of the loaded cell, on a small box: for
+    /// [`StressMethod::SubCell`] with a capped and tapered alias sum, for
+    /// [`StressMethod::Full`] with the exact one; its long waves split again into
+    /// bands `chi(k / k_hi) - chi(k / k_lo)`, `k_lo = k_hi / BAND_RATIO`, down to the
+    /// full expansion's split `k0 ~ 4 / span`, each band on the offsets within its
+    /// reach `REACH / k_lo` by a lattice sum with the few aliases its band edge `8
+    /// k_hi` needs; below `k0` by Hankel transforms in free space, as the full
+    /// expansion. No band's kernel reaches its box's images, however long the
+    /// coating's membrane length, and the cost depends neither on `cell / h1` nor on
+    /// `E1 / E2`. The bands telescope: `(1 - chi(k / k1)) + sum (chi(k / k_hi) -
+    /// chi(k / k_lo)) = 1 - chi(k / k0)`, the full expansion's short waves, which its
+    /// one box of `REACH / k0` cells would sum at `(cell / lambda)^2` times more
+    /// wavenumbers (a second per depth at `lambda ~ 3` cells on a window of 256).
+    fn add_banded_remainder(
+        &self,
+        lattice: &OffsetLattice,
+        lambda: f64,
+        top: Pass,
+        remainder: &Radial,
+        table: &mut InfluenceTable,
+    ) {
+        let h = lattice.cell;
+        let k0 = split_wavenumber(lattice).min(SUB_CELL_SPLIT / h);
+        self.add_bands(lattice, lambda, top, remainder, table, k0);
+        let long = long_wave_kernels(lattice, k0, remainder, &mut table.scratch.long_wave);
+        for (t, l) in table.values.iter_mut().zip(long) {
+            for (v, a) in t.iter_mut().zip(l) {
+                *v += a;
+            }
+        }
+    }
+
+    /// Love's kernels of the depth's material at z plus the two carriers at lambda
+    /// (the slope's at `mu`), into `table`.
+    fn fill_love_and_carriers(
+        &self,
+        z: f64,
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+        material: Elastic,
+        (carrier, r1): ((f64, f64, f64), [f64; 4]),
+        mu: f64,
+    ) {
+        let (d_xi, d_eta, lambda) = carrier;
+        let [al, be, ga, ep] = r1.map(|r| r / mu);
         let love_split = |depth: f64, zero: &mut InfluenceTable, slope: &mut InfluenceTable| {
             HomogeneousStressKernels::fill_poisson_split(depth, lattice, zero, slope);
         };
@@ -549,139 +699,6 @@ impl LayeredStressKernels {
         }
         drop(slope_pair);
         table.scratch.love_split = split;
-        if method == StressMethod::ThinFilm {
-            return;
-        }
-        // 3. The remainder, O(k^2) at k = 0: its short waves by a periodic lattice
-        // sum, its long waves by Hankel transforms.
-        let eval = |solver: &mut LayeredSolver, k: f64| {
-            self.remainder(solver, layer, z, carrier, r1, mu, k)
-        };
-        let remainder = Radial {
-            stack: &self.stack,
-            eval: &eval,
-        };
-        if method == StressMethod::SubCell {
-            let top = Pass::Short {
-                taper: true,
-                edge: z > 0.0,
-            };
-            self.add_banded_remainder(lattice, lambda, top, &remainder, table);
-            return;
-        }
-        let k1 = split_wavenumber(lattice);
-        if needs_bands(lattice, lambda) {
-            // The short waves need aliases on a box of `REACH / k1` cells: in bands.
-            let top = Pass::Short {
-                taper: false,
-                edge: false,
-            };
-            let work = row
-                .as_ref()
-                .filter(|(source, _)| row_lattice(lattice, source))
-                .and_then(|(source, _)| source.kept::<RowWork>());
-            match (work, row) {
-                (Some(work), Some((_, row))) if work.short.band_split().is_some() => {
-                    let h = lattice.cell;
-                    let kxh = work.short.band_split().unwrap_or(SUB_CELL_SPLIT);
-                    // Bands down to kx on small boxes, in the table.
-                    self.add_bands(lattice, lambda, top, &remainder, table, kxh / h);
-                    // Below kx from the rows.
-                    let at = |solved: &[LayeredSolver], b: usize, theta: f64| {
-                        self.solved_remainder(&solved[b], layer, z, carrier, r1, mu, theta / h)
-                    };
-                    let theta_cut = (ALIAS_DECAY * h / lambda).min(BAND_EDGE * kxh);
-                    work.short.add_band(
-                        theta_cut,
-                        |b, theta| at(&work.short_solved, b, theta),
-                        row,
-                    );
-                    work.long
-                        .add(|b, theta| at(&work.long_solved, b, theta), row);
-                }
-                _ => self.add_banded_remainder(lattice, lambda, top, &remainder, table),
-            }
-            return;
-        }
-        let short_waves = Pass::Short {
-            taper: false,
-            edge: false,
-        };
-        let thickness = self.stack.thickness();
-        match row {
-            Some((source, row)) if row_lattice(lattice, source) => {
-                let theta_cut = ALIAS_DECAY * lattice.cell / lambda;
-                match source.kept::<RowWork>() {
-                    Some(work) if theta_cut <= work.short.top() => {
-                        let h = lattice.cell;
-                        let at = |solved: &[LayeredSolver], b: usize, theta: f64| {
-                            self.solved_remainder(&solved[b], layer, z, carrier, r1, mu, theta / h)
-                        };
-                        work.short
-                            .add(theta_cut, |b, theta| at(&work.short_solved, b, theta), row);
-                        work.long
-                            .add(|b, theta| at(&work.long_solved, b, theta), row);
-                        return;
-                    }
-                    _ => remainder_on_row(
-                        lattice,
-                        lambda,
-                        thickness,
-                        k1,
-                        &remainder,
-                        short_waves,
-                        source,
-                        row,
-                    ),
-                }
-                let basis = &mut table.scratch.long_wave;
-                long_wave_on_row(lattice, k1, &remainder, basis, source, row);
-            }
-            _ => {
-                let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
-                let short =
-                    remainder_on_lattice(lattice, lambda, thickness, k1, &remainder, short_waves);
-                for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
-                    for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
-                        *v += a + b;
-                    }
-                }
-            }
-        }
-    }
-
-    /// The remainder in bands, added to `table`: split at `k1 = SUB_CELL_SPLIT /
-    /// cell`, its short waves (pass `top`) on the offsets within their reach
-    /// (`REACH / SUB_CELL_SPLIT` cells) of the loaded cell, on a small box: for
-    /// [`StressMethod::SubCell`] with a capped and tapered alias sum, for
-    /// [`StressMethod::Full`] with the exact one; its long waves split again into
-    /// bands `chi(k / k_hi) - chi(k / k_lo)`, `k_lo = k_hi / BAND_RATIO`, down to the
-    /// full expansion's split `k0 ~ 4 / span`, each band on the offsets within its
-    /// reach `REACH / k_lo` by a lattice sum with the few aliases its band edge `8
-    /// k_hi` needs; below `k0` by Hankel transforms in free space, as the full
-    /// expansion. No band's kernel reaches its box's images, however long the
-    /// coating's membrane length, and the cost depends neither on `cell / h1` nor on
-    /// `E1 / E2`. The bands telescope: `(1 - chi(k / k1)) + sum (chi(k / k_hi) -
-    /// chi(k / k_lo)) = 1 - chi(k / k0)`, the full expansion's short waves, which its
-    /// one box of `REACH / k0` cells would sum at `(cell / lambda)^2` times more
-    /// wavenumbers (a second per depth at `lambda ~ 3` cells on a window of 256).
-    fn add_banded_remainder(
-        &self,
-        lattice: &OffsetLattice,
-        lambda: f64,
-        top: Pass,
-        remainder: &Radial,
-        table: &mut InfluenceTable,
-    ) {
-        let h = lattice.cell;
-        let k0 = split_wavenumber(lattice).min(SUB_CELL_SPLIT / h);
-        self.add_bands(lattice, lambda, top, remainder, table, k0);
-        let long = long_wave_kernels(lattice, k0, remainder, &mut table.scratch.long_wave);
-        for (t, l) in table.values.iter_mut().zip(long) {
-            for (v, a) in t.iter_mut().zip(l) {
-                *v += a;
-            }
-        }
     }
 
     /// The short waves above `k1 = SUB_CELL_SPLIT / cell` (pass `top`) and the bands
@@ -989,11 +1006,64 @@ impl StressKernels for LayeredStressKernels {
                 })
                 .collect()
         };
+        let (short_solved, long_solved) = (solved(short.nodes()), solved(long.nodes()));
+        // Per depth that sums its remainder on the rows: which family, and the
+        // remainder's transfer at the nodes (each node's stack solved once above).
+        let kxh = short.band_split();
+        let mut zs: Vec<f64> = depths.to_vec();
+        zs.sort_by(f64::total_cmp);
+        zs.dedup();
+        let plans: Vec<DepthRows> = zs
+            .par_iter()
+            .filter_map(|&z| {
+                if self.method_at(z, lattice) != StressMethod::Full {
+                    return None;
+                }
+                let layer = self.layer(z);
+                let lambda = self.decay_length(layer, z);
+                let banded = needs_bands(lattice, lambda);
+                let mut theta_cut = ALIAS_DECAY * h / lambda;
+                if banded {
+                    theta_cut = theta_cut.min(BAND_EDGE * kxh?);
+                } else if theta_cut > short.top() {
+                    return None;
+                }
+                let (carrier, r1) = self.carriers(layer, z);
+                let at = |solved: &LayeredSolver, theta: f64| {
+                    self.solved_remainder(solved, layer, z, carrier, r1, lambda, theta / h)
+                };
+                let used = short.used(theta_cut, banded);
+                let short_values = (short.nodes()[..used].iter())
+                    .zip(&short_solved)
+                    .map(|(&theta, solved)| at(solved, theta))
+                    .collect();
+                let long_values = (long.nodes().iter())
+                    .zip(&long_solved)
+                    .map(|(&theta, solved)| at(solved, theta))
+                    .collect();
+                Some(DepthRows {
+                    z,
+                    banded,
+                    short: short_values,
+                    long: long_values,
+                })
+            })
+            .collect();
+        let mut remainders: Vec<[Vec<f64>; COMPONENTS]> = plans
+            .iter()
+            .map(|_| std::array::from_fn(|_| vec![0.0; source.nx]))
+            .collect();
+        let short_jobs: Vec<(bool, &[[f64; 4]])> = plans
+            .iter()
+            .map(|p| (p.banded, p.short.as_slice()))
+            .collect();
+        short.add_many(&short_jobs, &mut remainders);
+        let long_jobs: Vec<&[[f64; 4]]> = plans.iter().map(|p| p.long.as_slice()).collect();
+        long.add_many(&long_jobs, &mut remainders);
         source.keep(RowWork {
-            short_solved: solved(short.nodes()),
-            long_solved: solved(long.nodes()),
-            short,
-            long,
+            depths: plans.iter().map(|p| p.z).collect(),
+            remainders,
+            band_split: kxh,
         });
     }
 
@@ -1271,10 +1341,40 @@ const ROW_BAND_TOP: f64 = 2.5;
 /// long waves' rows per node and, per node, the stack solved at its wavenumber (a
 /// depth then reads its transfer without solving the stack again).
 struct RowWork {
-    short: ShortWaveRow,
-    long: LongWaveRow,
-    short_solved: Vec<LayeredSolver>,
-    long_solved: Vec<LayeredSolver>,
+    /// The depths whose remainder the rows hold (ascending).
+    depths: Vec<f64>,
+    /// Per depth, the remainder's short waves (or the band family's share, for a
+    /// depth summed in bands) and long waves along the row.
+    remainders: Vec<[Vec<f64>; COMPONENTS]>,
+    /// The band family's split `kx h`.
+    band_split: Option<f64>,
+}
+
+impl RowWork {
+    /// The remainder's rows at depth z, if they hold it.
+    fn remainder_at(&self, z: f64) -> Option<&[Vec<f64>; COMPONENTS]> {
+        let i = self.depths.binary_search_by(|d| d.total_cmp(&z)).ok()?;
+        Some(&self.remainders[i])
+    }
+}
+
+/// One depth of an XZ section that takes its remainder from the rows: whether it is
+/// summed in bands (and so takes the band family's share), and its remainder's
+/// wave-frame transfer at the short and long waves' nodes.
+struct DepthRows {
+    z: f64,
+    banded: bool,
+    short: Vec<[f64; 4]>,
+    long: Vec<[f64; 4]>,
+}
+
+/// `row += rows`.
+fn add_to_row(row: &mut [Vec<f64>; COMPONENTS], rows: &[Vec<f64>; COMPONENTS]) {
+    for (o, r) in row.iter_mut().zip(rows) {
+        for (a, b) in o.iter_mut().zip(r) {
+            *a += b;
+        }
+    }
 }
 
 /// Whether the full expansion's short waves at decay length `lambda` need aliases on

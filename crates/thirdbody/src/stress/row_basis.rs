@@ -259,6 +259,38 @@ impl ShortWaveRow {
         &self.nodes
     }
 
+    /// The nodes a depth whose transfer is negligible beyond `theta_cut` takes:
+    /// those of the panels that start below it (of the band family's with `band`).
+    pub(super) fn used(&self, theta_cut: f64, band: bool) -> usize {
+        let used = self.panels.partition_point(|&(lo, _)| lo < theta_cut) * POINTS;
+        match (band, self.band) {
+            (true, Some((_, band_nodes))) => used.min(band_nodes),
+            (true, None) => 0,
+            (false, _) => used,
+        }
+    }
+
+    /// Adds to `rows[d]` the short waves of depth d from the wave-frame functions
+    /// `[xixi, etaeta, zz, xiz / i]` at its [`Self::used`] nodes: with the rows of the
+    /// share `1 - chi(k / k1)`, or where `band` with the band family's `chi(k / kx) -
+    /// chi(k / k1)` (the part of a banded depth's remainder below the bands it sums on
+    /// small boxes). The depths are taken together, each node's rows read once for
+    /// all of them.
+    pub(super) fn add_many(
+        &self,
+        depths: &[(bool, &[[f64; 4]])],
+        rows: &mut [[Vec<f64>; COMPONENTS]],
+    ) {
+        let jobs: Vec<(&[f64], &[[f64; 4]])> = depths
+            .iter()
+            .map(|&(band, values)| {
+                let psi: &[f64] = if band { &self.psi_band } else { &self.psi };
+                (psi, values)
+            })
+            .collect();
+        add_rows_many(&jobs, self.nx, rows);
+    }
+
     /// The largest theta the rows hold.
     pub(super) fn top(&self) -> f64 {
         self.panels.last().map_or(0.0, |p| p.1)
@@ -267,42 +299,6 @@ impl ShortWaveRow {
     /// The band family's split `kx h`, if it has one.
     pub(super) fn band_split(&self) -> Option<f64> {
         self.band.map(|(kxh, _)| kxh)
-    }
-
-    /// Adds to `row` the share `chi(k / kx) - chi(k / k1)` of the short waves
-    /// ([`Self::add`] with the band family's rows): the part of the remainder below the
-    /// bands a depth sums on small boxes.
-    pub(super) fn add_band(
-        &self,
-        theta_cut: f64,
-        mut transfer: impl FnMut(usize, f64) -> [f64; 4],
-        row: &mut [Vec<f64>; COMPONENTS],
-    ) {
-        let Some((_, band_nodes)) = self.band else {
-            return;
-        };
-        let used =
-            (self.panels.partition_point(|&(lo, _)| lo < theta_cut) * POINTS).min(band_nodes);
-        add_rows(
-            &self.nodes[..used],
-            &self.psi_band,
-            self.nx,
-            &mut transfer,
-            row,
-        );
-    }
-
-    /// Adds to `row` the short waves of the wave-frame functions `transfer(node,
-    /// theta)` at the nodes (`[xixi, etaeta, zz, xiz / i]`), negligible beyond
-    /// `theta_cut`.
-    pub(super) fn add(
-        &self,
-        theta_cut: f64,
-        mut transfer: impl FnMut(usize, f64) -> [f64; 4],
-        row: &mut [Vec<f64>; COMPONENTS],
-    ) {
-        let used = self.panels.partition_point(|&(lo, _)| lo < theta_cut) * POINTS;
-        add_rows(&self.nodes[..used], &self.psi, self.nx, &mut transfer, row);
     }
 }
 
@@ -416,44 +412,53 @@ impl LongWaveRow {
         &self.thetas
     }
 
-    /// Adds to `row` the long waves of the wave-frame functions `transfer(node,
-    /// theta)` at the nodes.
-    pub(super) fn add(
-        &self,
-        mut transfer: impl FnMut(usize, f64) -> [f64; 4],
-        row: &mut [Vec<f64>; COMPONENTS],
-    ) {
-        add_rows(&self.thetas, &self.psi, self.nx, &mut transfer, row);
+    /// Adds to `rows[d]` the long waves of depth d from its wave-frame functions at
+    /// every node, `values[d]` (the depths taken together, as the short waves').
+    pub(super) fn add_many(&self, values: &[&[[f64; 4]]], rows: &mut [[Vec<f64>; COMPONENTS]]) {
+        let jobs: Vec<(&[f64], &[[f64; 4]])> =
+            values.iter().map(|&v| (self.psi.as_slice(), v)).collect();
+        add_rows_many(&jobs, self.nx, rows);
     }
 }
 
-/// `row += sum_b` the nine products of the transfer at node b with its angular rows.
-fn add_rows(
-    thetas: &[f64],
-    psi: &[f64],
-    nx: usize,
-    transfer: &mut impl FnMut(usize, f64) -> [f64; 4],
-    row: &mut [Vec<f64>; COMPONENTS],
-) {
-    for (b, &theta) in thetas.iter().enumerate() {
-        let [r0, r1, r2, r3] = transfer(b, theta);
-        if r0 == 0.0 && r1 == 0.0 && r2 == 0.0 && r3 == 0.0 {
-            continue;
-        }
-        let rows = &psi[b * ANGULAR * nx..][..ANGULAR * nx];
-        let (cc, rest) = rows.split_at(nx);
-        let (ss, rest) = rest.split_at(nx);
-        let (cs, rest) = rest.split_at(nx);
-        let (c, s) = rest.split_at(nx);
-        let [o0, o1, o2, o3, o4, o5] = row;
-        for i in 0..nx {
-            o0[i] += r0 * cc[i] + r1 * ss[i];
-            o1[i] += r0 * ss[i] + r1 * cc[i];
-            o2[i] += r2 * (cc[i] + ss[i]);
-            o3[i] += (r0 - r1) * cs[i];
-            o4[i] += r3 * c[i];
-            o5[i] += r3 * s[i];
-        }
+/// The rows of many depths, `jobs[d] = (rows per node, transfer per node)`,
+/// into `rows[d]`: node by node, so that a node's angular rows are read once for a
+/// block of depths (the depths' outputs stay in cache; read per depth, the rows of
+/// all nodes streamed from memory once per depth). Blocks of depths run in parallel.
+fn add_rows_many(jobs: &[(&[f64], &[[f64; 4]])], nx: usize, rows: &mut [[Vec<f64>; COMPONENTS]]) {
+    const BLOCK: usize = 8;
+    rows.par_chunks_mut(BLOCK)
+        .zip(jobs.par_chunks(BLOCK))
+        .for_each(|(rows, jobs)| {
+            let nodes = jobs.iter().map(|(_, v)| v.len()).max().unwrap_or(0);
+            for b in 0..nodes {
+                for (row, &(psi, values)) in rows.iter_mut().zip(jobs) {
+                    if let Some(&value) = values.get(b) {
+                        add_node(&psi[b * ANGULAR * nx..][..ANGULAR * nx], value, nx, row);
+                    }
+                }
+            }
+        });
+}
+
+/// `row +=` the nine products of the transfer `[r0, r1, r2, r3]` at one node with its
+/// angular rows `psi` (`c^2, s^2, c s, i c, i s`, each `nx` long).
+fn add_node(psi: &[f64], [r0, r1, r2, r3]: [f64; 4], nx: usize, row: &mut [Vec<f64>; COMPONENTS]) {
+    if r0 == 0.0 && r1 == 0.0 && r2 == 0.0 && r3 == 0.0 {
+        return;
+    }
+    let (cc, rest) = psi.split_at(nx);
+    let (ss, rest) = rest.split_at(nx);
+    let (cs, rest) = rest.split_at(nx);
+    let (c, s) = rest.split_at(nx);
+    let [o0, o1, o2, o3, o4, o5] = row;
+    for i in 0..nx {
+        o0[i] += r0 * cc[i] + r1 * ss[i];
+        o1[i] += r0 * ss[i] + r1 * cc[i];
+        o2[i] += r2 * (cc[i] + ss[i]);
+        o3[i] += (r0 - r1) * cs[i];
+        o4[i] += r3 * c[i];
+        o5[i] += r3 * s[i];
     }
 }
 
