@@ -1432,13 +1432,24 @@ struct BoxSpectrum {
     k1h: f64,
     theta_cut: f64,
     norm: f64,
+    /// The radial functions times the pass's share at every squared integer radius
+    /// `n = ix^2 + iy^2` the sum meets (`theta = 2 pi sqrt(n) / len`), up to the cut:
+    /// the box's wavenumbers and their aliases take only `n` integers, so each
+    /// distinct one is evaluated once (far fewer than the terms of the sum: sums of two
+    /// squares are sparse). `None` for a table too large to keep.
+    squares: Option<Vec<[f64; 4]>>,
 }
+
+/// The largest squared radius [`BoxSpectrum`] tabulates (16 MB of values).
+const SQUARES_LIMIT: f64 = 5e5;
 
 /// Per base index of an axis and alias order: theta = k h and the weight (`sinc`,
 /// taper and the phase of the fractional offset).
 struct AxisTerms {
     theta: Vec<f64>,
     weight: Vec<Complex<f64>>,
+    /// `theta len / (2 pi)`: the wavenumber as a signed integer.
+    index: Vec<i64>,
 }
 
 impl BoxSpectrum {
@@ -1524,6 +1535,12 @@ impl BoxSpectrum {
                 .map(|j| {
                     let mut theta = Vec::with_capacity(n_alias);
                     let mut weight = Vec::with_capacity(n_alias);
+                    let mut index = Vec::with_capacity(n_alias);
+                    let signed = if j <= a.len / 2 {
+                        j as i64
+                    } else {
+                        j as i64 - a.len as i64
+                    };
                     for m in -a.aliases..=a.aliases {
                         let t = a.base(j) + 2.0 * PI * m as f64;
                         theta.push(t);
@@ -1531,14 +1548,19 @@ impl BoxSpectrum {
                             sinc(t / 2.0) * taper_weight(a, t),
                             t * a.frac,
                         ));
+                        index.push(signed + m * a.len as i64);
                     }
-                    AxisTerms { theta, weight }
+                    AxisTerms {
+                        theta,
+                        weight,
+                        index,
+                    }
                 })
                 .collect()
         };
         let (tx, ty) = (terms(&ax), terms(&ay));
         let norm = 1.0 / (ax.len * ay.len) as f64;
-        BoxSpectrum {
+        let mut spectrum = BoxSpectrum {
             ax,
             ay,
             tx,
@@ -1549,7 +1571,51 @@ impl BoxSpectrum {
             // Beyond theta_max the remainder is below e^{-ALIAS_DECAY} of its scale.
             theta_cut: theta_max,
             norm,
+            squares: None,
+        };
+        spectrum.squares = spectrum.tabulate_squares();
+        spectrum
+    }
+
+    /// The table of [`BoxSpectrum::squares`], if it is small enough.
+    fn tabulate_squares(&self) -> Option<Vec<[f64; 4]>> {
+        let len = self.ax.len;
+        let n_max = (self.theta_cut * len as f64 / (2.0 * PI)).powi(2).floor();
+        if self.ay.len != len || n_max.is_nan() || n_max >= SQUARES_LIMIT {
+            return None;
         }
+        let n_max = n_max as i64;
+        let mut needed = vec![false; n_max as usize + 1];
+        for x in &self.tx[..=len / 2] {
+            for &ix in &x.index {
+                let a = ix * ix;
+                if a > n_max {
+                    continue;
+                }
+                for y in &self.ty {
+                    for &iy in &y.index {
+                        let n = a + iy * iy;
+                        if n <= n_max {
+                            needed[n as usize] = true;
+                        }
+                    }
+                }
+            }
+        }
+        let ns: Vec<usize> = (0..needed.len()).filter(|&n| needed[n]).collect();
+        let values: Vec<[f64; 4]> = ns
+            .par_iter()
+            .map(|&n| {
+                let theta = 2.0 * PI * (n as f64).sqrt() / len as f64;
+                let share = self.high_pass(theta);
+                self.radial_table.eval(theta).map(|v| v * share)
+            })
+            .collect();
+        let mut table = vec![[0.0; 4]; needed.len()];
+        for (n, v) in ns.into_iter().zip(values) {
+            table[n] = v;
+        }
+        Some(table)
     }
 
     /// `1 - chi(k)`, which is 1 to double precision beyond BAND_EDGE k1, or the band
@@ -1576,6 +1642,37 @@ impl BoxSpectrum {
         let (x, y) = (&self.tx[jx], &self.ty[jy]);
         let theta_cut = self.theta_cut;
         let mut acc = [Complex::<f64>::default(); COMPONENTS];
+        if let Some(squares) = &self.squares {
+            let n_max = squares.len() as i64 - 1;
+            for (&iy, &wy) in y.index.iter().zip(&y.weight) {
+                let b = iy * iy;
+                if b > n_max {
+                    continue;
+                }
+                for (&ix, &wx) in x.index.iter().zip(&x.weight) {
+                    let n = ix * ix + b;
+                    if n > n_max {
+                        continue;
+                    }
+                    let [xixi, etaeta, zz, xiz] = squares[n as usize];
+                    let (c, s) = if n > 0 {
+                        let radius = (n as f64).sqrt();
+                        (ix as f64 / radius, iy as f64 / radius)
+                    } else {
+                        (1.0, 0.0)
+                    };
+                    let w = wx * wy;
+                    let shear = Complex::new(0.0, xiz) * w;
+                    acc[0] += w * (xixi * c * c + etaeta * s * s);
+                    acc[1] += w * (xixi * s * s + etaeta * c * c);
+                    acc[2] += w * zz;
+                    acc[3] += w * ((xixi - etaeta) * c * s);
+                    acc[4] += shear * c;
+                    acc[5] += shear * s;
+                }
+            }
+            return acc.map(|a| a * self.norm);
+        }
         for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
             if ty_.abs() > theta_cut {
                 continue;
