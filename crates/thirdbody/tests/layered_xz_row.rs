@@ -65,7 +65,10 @@ fn direct(grid: &Grid, p: &[f64], body: &Body, y: f64, z: f64) -> [Vec<f64>; 6] 
 }
 
 fn check(body: &Body, depths: &[f64]) {
-    let grid = Grid::centred(20, 14, 0.1, [0.0, 0.0]).unwrap();
+    check_on(Grid::centred(20, 14, 0.1, [0.0, 0.0]).unwrap(), body, depths);
+}
+
+fn check_on(grid: Grid, body: &Body, depths: &[f64]) {
     let p = pressure(&grid);
     // A cell edge (y = 0), a cell centre, and in between.
     for y in [0.0, grid.y(5), 0.237] {
@@ -140,4 +143,26 @@ fn rigid_based_xz_section_is_the_direct_sum_of_the_table() {
         base: Base::Rigid(thirdbody::body::layered::BaseContact::Bonded),
     });
     check(&body, &[0.2, 1.4]);
+}
+
+/// A window wide enough (72 cells) that the row sums its short waves in two families
+/// on two boxes (above and below a second split), with depths summed in bands (in
+/// the 1.5-cell top layer and just below it) and deep ones.
+#[test]
+fn wide_window_xz_section_is_the_direct_sum_of_the_table() {
+    let body = Body::Layered(Stack {
+        layers: vec![
+            Ply {
+                material: elastic(4.0),
+                thickness: 0.075,
+            },
+            Ply {
+                material: elastic(0.5),
+                thickness: 0.3,
+            },
+        ],
+        base: Base::HalfSpace(elastic(1.0)),
+    });
+    let grid = Grid::centred(72, 40, 0.05, [0.0, 0.0]).unwrap();
+    check_on(grid, &body, &[0.0, 0.05, 0.2, 0.9, 1.6]);
 }

@@ -348,12 +348,22 @@ impl<'a> RowSource<'a> {
     }
 
     /// The pressure's spectrum on a periodic box of `len` x `len` cells, with the
-    /// row's phase for kernels whose y offsets have the fractional part `frac`
-    /// (computed on first use, then shared).
-    pub(crate) fn spectrum(&self, len: usize, frac: f64) -> std::sync::Arc<PressureSpectrum> {
+    /// row's phase for kernels whose y offsets have the fractional part `frac`, at
+    /// its first `columns` wavenumbers along x (at most `len / 2 + 1`; computed on
+    /// first use, then shared).
+    pub(crate) fn spectrum(
+        &self,
+        len: usize,
+        frac: f64,
+        columns: usize,
+    ) -> std::sync::Arc<PressureSpectrum> {
         let whole = (self.offset - frac).round();
+        let columns = columns.min(len / 2 + 1);
         let mut spectra = self.spectra.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(s) = spectra.iter().find(|s| s.len == len && s.whole == whole) {
+        if let Some(s) = spectra
+            .iter()
+            .find(|s| s.len == len && s.whole == whole && s.columns >= columns)
+        {
             return s.clone();
         }
         let s = std::sync::Arc::new(PressureSpectrum::new(
@@ -362,6 +372,7 @@ impl<'a> RowSource<'a> {
             self.ny,
             len,
             whole,
+            columns,
         ));
         spectra.push(s.clone());
         s
@@ -376,12 +387,14 @@ impl<'a> RowSource<'a> {
 pub(crate) struct PressureSpectrum {
     len: usize,
     whole: f64,
+    /// The wavenumbers along x held, `jx < columns`.
+    columns: usize,
     /// `values[jx * len + jy]`.
     values: Vec<realfft::num_complex::Complex<f64>>,
 }
 
 impl PressureSpectrum {
-    fn new(pressure: &[f64], nx: usize, ny: usize, len: usize, whole: f64) -> Self {
+    fn new(pressure: &[f64], nx: usize, ny: usize, len: usize, whole: f64, columns: usize) -> Self {
         use rayon::prelude::*;
         use realfft::num_complex::Complex;
         assert!(nx <= len && ny <= len, "the box holds the pressure");
@@ -408,7 +421,7 @@ impl PressureSpectrum {
                 Complex::from_polar(1.0, 2.0 * PI * turns as f64 / len as f64)
             })
             .collect();
-        let values: Vec<Complex<f64>> = (0..half)
+        let values: Vec<Complex<f64>> = (0..columns.min(half))
             .into_par_iter()
             .flat_map_iter(|jx| {
                 let mut column = vec![Complex::default(); len];
@@ -419,10 +432,15 @@ impl PressureSpectrum {
                 column.into_iter().zip(&phase).map(|(c, p)| c * p)
             })
             .collect();
-        PressureSpectrum { len, whole, values }
+        PressureSpectrum {
+            len,
+            whole,
+            columns: columns.min(half),
+            values,
+        }
     }
 
-    /// Column jx: the values at `jy = 0..len`.
+    /// Column jx (below the columns computed): the values at `jy = 0..len`.
     pub(crate) fn column(&self, jx: usize) -> &[realfft::num_complex::Complex<f64>] {
         &self.values[jx * self.len..(jx + 1) * self.len]
     }
@@ -607,6 +625,37 @@ impl HomogeneousStressKernels {
             let g0 = std::array::from_fn(|c| zero[c][i]);
             let g1 = std::array::from_fn(|c| slope[c][i]);
             for (dst, v) in combined.iter_mut().zip(combine(&g0, &g1)) {
+                dst[i] = v;
+            }
+        }
+        corners.difference(&combined, lattice, table);
+    }
+
+    /// As [`Self::fill_poisson_combined`] at depth `lambda`, with Love's kernels of
+    /// Poisson ratio nu at another depth z added to the combination:
+    /// `combine(G_nu(z), G(0)(lambda), G'(lambda))`, one table summed.
+    pub(crate) fn fill_love_and_split_combined(
+        z: f64,
+        nu: f64,
+        lambda: f64,
+        lattice: &OffsetLattice,
+        table: &mut InfluenceTable,
+        combine: impl Fn(
+            &[f64; COMPONENTS],
+            &[f64; COMPONENTS],
+            &[f64; COMPONENTS],
+        ) -> [f64; COMPONENTS],
+    ) {
+        let corners = FoldedCorners::new(lattice);
+        let own = corners.primitives(|u, v| corner_primitives(u, v, z, nu));
+        let (zero, slope) = corners.primitives2(|u, v| corner_primitives_split(u, v, lambda));
+        let n = zero[0].len();
+        let mut combined: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; n]);
+        for i in 0..n {
+            let g = std::array::from_fn(|c| own[c][i]);
+            let g0 = std::array::from_fn(|c| zero[c][i]);
+            let g1 = std::array::from_fn(|c| slope[c][i]);
+            for (dst, v) in combined.iter_mut().zip(combine(&g, &g0, &g1)) {
                 dst[i] = v;
             }
         }

@@ -118,7 +118,7 @@ use super::kernels::{
 use super::long_wave::{
     long_wave_kernels, long_wave_on_row, long_wave_share, short_wave_share, Radial, BAND_EDGE,
 };
-use super::row_basis::{LongWaveRow, ShortWaveRow};
+use super::row_basis::{LongWaveRow, Share, ShortWaveRow};
 use crate::body::layered::{Base, LayeredSolver, Stack};
 use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
@@ -480,18 +480,24 @@ impl LayeredStressKernels {
             // two tables, so all is one combination of their corner primitives.
             let nu = material.poisson;
             HomogeneousStressKernels::fill_poisson_combined(z, lattice, table, |g0, g1| {
-                let (axx, ayy, axy) = (-0.5 * g1[0], -0.5 * g1[1], -0.5 * g1[3]);
-                let (bxx, byy, bxy) = (g0[0] + ayy, g0[1] + axx, g0[3] - axy);
-                let base: [f64; COMPONENTS] = std::array::from_fn(|c| g0[c] + nu * g1[c]);
-                [
-                    base[0] + d_xi * ayy + d_eta * axx + al * bxx + be * byy,
-                    base[1] + d_xi * axx + d_eta * ayy + al * byy + be * bxx,
-                    base[2] + ga * (bxx + byy),
-                    base[3] - (d_xi - d_eta) * axy + (al - be) * bxy,
-                    base[4] + ep * g0[4],
-                    base[5] + ep * g0[5],
-                ]
+                let c = carrier_terms(g0, g1, (d_xi, d_eta), [al, be, ga, ep]);
+                std::array::from_fn(|q| g0[q] + nu * g1[q] + c[q])
             });
+        } else if mu == lambda {
+            // In the top layer: Love's kernels at z and the carriers at lambda, one
+            // combination of their corner primitives.
+            let nu = material.poisson;
+            HomogeneousStressKernels::fill_love_and_split_combined(
+                z,
+                nu,
+                lambda,
+                lattice,
+                table,
+                |g, g0, g1| {
+                    let c = carrier_terms(g0, g1, (d_xi, d_eta), [al, be, ga, ep]);
+                    std::array::from_fn(|q| g[q] + c[q])
+                },
+            );
         } else {
             self.fill_love_and_carriers(z, lattice, table, material, (carrier, r1), mu);
         }
@@ -966,7 +972,7 @@ impl StressKernels for LayeredStressKernels {
             .fold(0.0, f64::max);
         // Depths summed in bands take the bands below `kx` from the rows: the
         // largest band split whose band edge needs no aliases.
-        let band = lambdas
+        let kxh = lambdas
             .iter()
             .any(|&lambda| needs_bands(lattice, lambda))
             .then(|| {
@@ -977,16 +983,61 @@ impl StressKernels for LayeredStressKernels {
                 kxh
             })
             .filter(|&kxh| kxh > k1h);
-        if let Some(kxh) = band {
+        if let Some(kxh) = kxh {
             theta_top = theta_top.max(BAND_EDGE * kxh);
         }
         if theta_top == 0.0 || theta_top >= PI {
             return;
         }
-        let len = box_cells(span_in_cells(lattice), k1h);
+        // The short waves `1 - chi(k / k1)` in two families: above `k2` (`1 - chi(k /
+        // k2)`, and a banded depth's `chi(k / kx) - chi(k / k2)`) on a box only
+        // `REACH / k2` wider than the offsets, and the band `chi(k / k2) - chi(k /
+        // k1)` (up to `BAND_EDGE k2`) on the box `REACH / k1` wider: the rows' cost
+        // grows like the box's wavenumbers below each family's top.
+        let span = span_in_cells(lattice);
+        let len_low = box_cells(span, k1h);
+        let k2h = row_split(span, k1h, theta_top, len_low, kxh);
+        let len_high = box_cells(span, k2h);
         let frac_y = lattice.y_first - lattice.y_first.floor();
-        let spectrum = source.spectrum(len, frac_y);
-        let short = ShortWaveRow::new(&spectrum, len, frac_y, source.nx, k1h, theta_top, band);
+        let above = |theta: f64, kh: f64| {
+            if theta > BAND_EDGE * kh {
+                1.0
+            } else {
+                short_wave_share(theta, kh)
+            }
+        };
+        let high_share = |theta: f64| above(theta, k2h);
+        let band_share = |theta: f64| above(theta, k2h) - above(theta, kxh.unwrap_or(k2h));
+        let low_share = |theta: f64| above(theta, k1h) - above(theta, k2h);
+        let low_top = (BAND_EDGE * k2h).min(theta_top);
+        let columns = |len: usize, top: f64| (top * len as f64 / (2.0 * PI)).floor() as usize + 1;
+        let high = ShortWaveRow::new(
+            &source.spectrum(len_high, frac_y, columns(len_high, theta_top)),
+            len_high,
+            frac_y,
+            source.nx,
+            0.1 * k2h,
+            Share {
+                share: &high_share,
+                top: theta_top,
+            },
+            kxh.map(|kxh| Share {
+                share: &band_share,
+                top: BAND_EDGE * kxh,
+            }),
+        );
+        let low = ShortWaveRow::new(
+            &source.spectrum(len_low, frac_y, columns(len_low, low_top)),
+            len_low,
+            frac_y,
+            source.nx,
+            0.1 * k1h,
+            Share {
+                share: &low_share,
+                top: low_top,
+            },
+            None,
+        );
         let long = LongWaveRow::new(
             source.pressure(),
             source.nx,
@@ -1006,10 +1057,14 @@ impl StressKernels for LayeredStressKernels {
                 })
                 .collect()
         };
-        let (short_solved, long_solved) = (solved(short.nodes()), solved(long.nodes()));
-        // Per depth that sums its remainder on the rows: which family, and the
-        // remainder's transfer at the nodes (each node's stack solved once above).
-        let kxh = short.band_split();
+        let (high_solved, low_solved, long_solved) = (
+            solved(high.nodes()),
+            solved(low.nodes()),
+            solved(long.nodes()),
+        );
+        // Per depth that sums its remainder on the rows: whether it is banded, and
+        // the remainder's transfer at the nodes it takes (each node's stack solved
+        // once above).
         let mut zs: Vec<f64> = depths.to_vec();
         zs.sort_by(f64::total_cmp);
         zs.dedup();
@@ -1025,27 +1080,26 @@ impl StressKernels for LayeredStressKernels {
                 let mut theta_cut = ALIAS_DECAY * h / lambda;
                 if banded {
                     theta_cut = theta_cut.min(BAND_EDGE * kxh?);
-                } else if theta_cut > short.top() {
+                } else if theta_cut > theta_top {
                     return None;
                 }
                 let (carrier, r1) = self.carriers(layer, z);
-                let at = |solved: &LayeredSolver, theta: f64| {
-                    self.solved_remainder(solved, layer, z, carrier, r1, lambda, theta / h)
+                let values = |thetas: &[f64], solved: &[LayeredSolver]| -> Vec<[f64; 4]> {
+                    thetas
+                        .iter()
+                        .zip(solved)
+                        .map(|(&theta, solved)| {
+                            self.solved_remainder(solved, layer, z, carrier, r1, lambda, theta / h)
+                        })
+                        .collect()
                 };
-                let used = short.used(theta_cut, banded);
-                let short_values = (short.nodes()[..used].iter())
-                    .zip(&short_solved)
-                    .map(|(&theta, solved)| at(solved, theta))
-                    .collect();
-                let long_values = (long.nodes().iter())
-                    .zip(&long_solved)
-                    .map(|(&theta, solved)| at(solved, theta))
-                    .collect();
+                let (n_high, n_low) = (high.used(theta_cut, banded), low.used(theta_cut, false));
                 Some(DepthRows {
                     z,
                     banded,
-                    short: short_values,
-                    long: long_values,
+                    high: values(&high.nodes()[..n_high], &high_solved),
+                    low: values(&low.nodes()[..n_low], &low_solved),
+                    long: values(long.nodes(), &long_solved),
                 })
             })
             .collect();
@@ -1053,13 +1107,16 @@ impl StressKernels for LayeredStressKernels {
             .iter()
             .map(|_| std::array::from_fn(|_| vec![0.0; source.nx]))
             .collect();
-        let short_jobs: Vec<(bool, &[[f64; 4]])> = plans
+        let jobs: Vec<(bool, &[[f64; 4]])> = plans
             .iter()
-            .map(|p| (p.banded, p.short.as_slice()))
+            .map(|p| (p.banded, p.high.as_slice()))
             .collect();
-        short.add_many(&short_jobs, &mut remainders);
-        let long_jobs: Vec<&[[f64; 4]]> = plans.iter().map(|p| p.long.as_slice()).collect();
-        long.add_many(&long_jobs, &mut remainders);
+        high.add_many(&jobs, &mut remainders);
+        let jobs: Vec<(bool, &[[f64; 4]])> =
+            plans.iter().map(|p| (false, p.low.as_slice())).collect();
+        low.add_many(&jobs, &mut remainders);
+        let jobs: Vec<&[[f64; 4]]> = plans.iter().map(|p| p.long.as_slice()).collect();
+        long.add_many(&jobs, &mut remainders);
         source.keep(RowWork {
             depths: plans.iter().map(|p| p.z).collect(),
             remainders,
@@ -1295,7 +1352,7 @@ fn remainder_on_row(
     let (ax, ay) = (&spectrum.ax, &spectrum.ay);
     assert_eq!(ax.len, ay.len, "a square box");
     assert_eq!(ax.frac, 0.0, "outputs at cell centres along x");
-    let pressure = source.spectrum(ax.len, ay.frac);
+    let pressure = source.spectrum(ax.len, ay.frac, ax.len / 2 + 1);
     let half_x = ax.len / 2 + 1;
     let sums: Vec<[Complex<f64>; COMPONENTS]> = (0..half_x)
         .into_par_iter()
@@ -1358,14 +1415,58 @@ impl RowWork {
     }
 }
 
+/// The two carriers from Love's kernels for nu = 0 and their derivative in nu at
+/// the carriers' depth, `g0` and `g1` (one offset, or one corner's primitives):
+/// `A = -(G(1/2) - G(0))` has the transfer `e^{-k l} (s^2, c^2, -c s)` in (xx, yy,
+/// xy), `B` the transfer `k l e^{-k l} (c^2, s^2, c s)`, and `G(0)`'s shears `i k l
+/// e^{-k l} (c, s)`; the long-wave carrier takes `(d_xi, d_eta)` of A, the slope's
+/// `[alpha, beta, gamma, epsilon]` of B and the shears.
+fn carrier_terms(
+    g0: &[f64; COMPONENTS],
+    g1: &[f64; COMPONENTS],
+    (d_xi, d_eta): (f64, f64),
+    [al, be, ga, ep]: [f64; 4],
+) -> [f64; COMPONENTS] {
+    let (axx, ayy, axy) = (-0.5 * g1[0], -0.5 * g1[1], -0.5 * g1[3]);
+    let (bxx, byy, bxy) = (g0[0] + ayy, g0[1] + axx, g0[3] - axy);
+    [
+        d_xi * ayy + d_eta * axx + al * bxx + be * byy,
+        d_xi * axx + d_eta * ayy + al * byy + be * bxx,
+        ga * (bxx + byy),
+        -(d_xi - d_eta) * axy + (al - be) * bxy,
+        ep * g0[4],
+        ep * g0[5],
+    ]
+}
+
 /// One depth of an XZ section that takes its remainder from the rows: whether it is
 /// summed in bands (and so takes the band family's share), and its remainder's
 /// wave-frame transfer at the short and long waves' nodes.
 struct DepthRows {
     z: f64,
     banded: bool,
-    short: Vec<[f64; 4]>,
+    high: Vec<[f64; 4]>,
+    low: Vec<[f64; 4]>,
     long: Vec<[f64; 4]>,
+}
+
+/// The split `k2 h` between an XZ section's two families of short-wave rows
+/// ([`StressKernels::prepare_row`]): the one of a few candidates between `2 k1 h`
+/// and the band split `kx h` that minimises the wavenumbers both boxes sum below
+/// their tops (`(span + REACH / k2h)^2 top^2` above `k2`, `len_low^2 (BAND_EDGE
+/// k2h)^2` below).
+fn row_split(span: usize, k1h: f64, top: f64, len_low: usize, kxh: Option<f64>) -> f64 {
+    let cost = |k2h: f64| {
+        let high = (span as f64 + REACH / k2h) * top;
+        let low = len_low as f64 * BAND_EDGE * k2h.min(top / BAND_EDGE);
+        high * high + low * low
+    };
+    let ceiling = kxh.unwrap_or(f64::INFINITY).min(top);
+    (0..16)
+        .map(|i| 2.0 * k1h * 2f64.powf(0.5 * i as f64))
+        .filter(|&k2h| k2h <= ceiling)
+        .min_by(|&a, &b| cost(a).total_cmp(&cost(b)))
+        .unwrap_or(k1h)
 }
 
 /// `row += rows`.

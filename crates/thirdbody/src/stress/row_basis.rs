@@ -25,7 +25,7 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 
 use super::kernels::{PressureSpectrum, COMPONENTS};
-use super::long_wave::{short_wave_share, BAND_EDGE};
+use super::long_wave::BAND_EDGE;
 
 /// Chebyshev points (first kind) per panel: the degree of the former per-depth tables.
 const POINTS: usize = 20;
@@ -82,6 +82,13 @@ fn lagrange(nodes: &[f64; POINTS], bary: &[f64; POINTS], t: f64) -> [f64; POINTS
     l
 }
 
+/// A share of the remainder as a function of `theta = |k| h` (a difference of the
+/// smooth steps `1 - chi`), and the theta beyond which a family of rows ends.
+pub(super) struct Share<'a> {
+    pub share: &'a (dyn Fn(f64) -> f64 + Sync),
+    pub top: f64,
+}
+
 /// The short waves of a layered body's remainder along a row, as rows per
 /// interpolation node (module doc).
 pub(super) struct ShortWaveRow {
@@ -90,8 +97,8 @@ pub(super) struct ShortWaveRow {
     nodes: Vec<f64>,
     /// `psi[(node * ANGULAR + a) * nx + i]`.
     psi: Vec<f64>,
-    /// The band family's split `kx h` and its nodes (the first of `nodes`).
-    band: Option<(f64, usize)>,
+    /// The band family's nodes (the first of `nodes`; 0 without the family).
+    band_nodes: usize,
     /// The band family's rows, as `psi` with the share `chi(k / kx) - chi(k / k1)`
     /// instead of `1 - chi(k / k1)`.
     psi_band: Vec<f64>,
@@ -101,26 +108,28 @@ pub(super) struct ShortWaveRow {
 impl ShortWaveRow {
     /// The rows for outputs at x offsets `0..nx` cells (cell centres) from the
     /// pressure's spectrum on a box of `len` cells whose row phase has the fraction
-    /// `frac_y` (cells), split at `k1h = k1 h`, for every wavenumber up to `theta_top`
-    /// (`|k| h`, below pi: no aliases).
+    /// `frac_y` (cells), for the share `main` of the remainder up to its top (`theta =
+    /// |k| h`, below pi: no aliases) and optionally a second family with the share
+    /// `band`, up to its top. The first panel ends at `first` (a share is negligible
+    /// below it).
     pub(super) fn new(
         spectrum: &PressureSpectrum,
         len: usize,
         frac_y: f64,
         nx: usize,
-        k1h: f64,
-        theta_top: f64,
-        band: Option<f64>,
+        first: f64,
+        main: Share,
+        band: Option<Share>,
     ) -> Self {
+        let theta_top = main.top;
         assert!(theta_top < PI, "the row basis sums no aliases");
-        let panels = geometric_panels(0.01 * k1h, theta_top);
+        let panels = geometric_panels(first, theta_top);
         let panel_points: Vec<[f64; POINTS]> = panels.iter().map(|&p| panel_nodes(p)).collect();
         let nodes: Vec<f64> = panel_points.iter().flatten().copied().collect();
         let bary = barycentric_weights();
         let count = nodes.len() * ANGULAR;
-        // The band family's wavenumbers end at `BAND_EDGE kx h`, within the rows.
-        let band = band.filter(|&kxh| BAND_EDGE * kxh <= theta_top);
-        let band_edge = band.map_or(0.0, |kxh| BAND_EDGE * kxh);
+        // The band family's wavenumbers end at its top, within the rows.
+        let band_edge = band.as_ref().map_or(0.0, |b| b.top.min(theta_top));
         let band_nodes = panels.partition_point(|&(lo, _)| lo < band_edge) * POINTS;
         let total = count + band_nodes * ANGULAR;
         let base = |j: usize| {
@@ -171,12 +180,12 @@ impl ShortWaveRow {
                     if theta > theta_top {
                         break;
                     }
-                    let high_pass = if theta > BAND_EDGE * k1h {
-                        1.0
-                    } else {
-                        short_wave_share(theta, k1h)
+                    let high_pass = (main.share)(theta);
+                    let band_share = match &band {
+                        Some(b) if theta < band_edge => (b.share)(theta),
+                        _ => 0.0,
                     };
-                    if high_pass == 0.0 {
+                    if high_pass == 0.0 && band_share == 0.0 {
                         continue;
                     }
                     let (c, s) = if theta > 0.0 {
@@ -207,10 +216,11 @@ impl ShortWaveRow {
                             slot[4] += uo * s;
                         }
                     };
-                    accumulate(0, high_pass);
-                    if let Some(kxh) = band.filter(|_| theta < band_edge) {
-                        // chi(k / kx) - chi(k / k1), exactly.
-                        accumulate(count, high_pass - short_wave_share(theta, kxh));
+                    if high_pass != 0.0 {
+                        accumulate(0, high_pass);
+                    }
+                    if band_share != 0.0 {
+                        accumulate(count, band_share);
                     }
                 }
                 sums
@@ -248,7 +258,7 @@ impl ShortWaveRow {
             panels,
             nodes,
             psi,
-            band: band.map(|kxh| (kxh, band_nodes)),
+            band_nodes,
             psi_band,
             nx,
         }
@@ -263,10 +273,10 @@ impl ShortWaveRow {
     /// those of the panels that start below it (of the band family's with `band`).
     pub(super) fn used(&self, theta_cut: f64, band: bool) -> usize {
         let used = self.panels.partition_point(|&(lo, _)| lo < theta_cut) * POINTS;
-        match (band, self.band) {
-            (true, Some((_, band_nodes))) => used.min(band_nodes),
-            (true, None) => 0,
-            (false, _) => used,
+        if band {
+            used.min(self.band_nodes)
+        } else {
+            used
         }
     }
 
@@ -289,16 +299,6 @@ impl ShortWaveRow {
             })
             .collect();
         add_rows_many(&jobs, self.nx, rows);
-    }
-
-    /// The largest theta the rows hold.
-    pub(super) fn top(&self) -> f64 {
-        self.panels.last().map_or(0.0, |p| p.1)
-    }
-
-    /// The band family's split `kx h`, if it has one.
-    pub(super) fn band_split(&self) -> Option<f64> {
-        self.band.map(|(kxh, _)| kxh)
     }
 }
 
