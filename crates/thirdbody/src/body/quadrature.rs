@@ -104,14 +104,33 @@ impl ChebyshevPanels {
 
     /// The interpolant of the values taken at [`ChebyshevPanels::points`].
     pub fn from_values(lo: f64, hi: f64, panels: usize, degree: usize, values: &[f64]) -> Self {
-        let width = (hi - lo) / panels as f64;
-        // The DCT's cosines, the same for every panel: `cosines[j * degree + k]`.
-        let cosines: Vec<f64> = (0..degree * degree)
+        Self::from_values_with(lo, hi, panels, &Self::dct_cosines(degree), values)
+    }
+
+    /// The cosines of the DCT that [`ChebyshevPanels::from_values`] takes at `degree`
+    /// points, `[j * degree + k]`: the same for every panel and every function, so a
+    /// caller building many interpolants computes them once.
+    pub fn dct_cosines(degree: usize) -> Vec<f64> {
+        (0..degree * degree)
             .map(|jk| {
                 let (j, k) = (jk / degree, jk % degree);
                 (std::f64::consts::PI * j as f64 * (k as f64 + 0.5) / degree as f64).cos()
             })
-            .collect();
+            .collect()
+    }
+
+    /// [`ChebyshevPanels::from_values`] with the DCT's cosines given
+    /// ([`ChebyshevPanels::dct_cosines`]; their count sets the degree).
+    pub fn from_values_with(
+        lo: f64,
+        hi: f64,
+        panels: usize,
+        cosines: &[f64],
+        values: &[f64],
+    ) -> Self {
+        let degree = (cosines.len() as f64).sqrt().round() as usize;
+        assert_eq!(degree * degree, cosines.len(), "a square table of cosines");
+        let width = (hi - lo) / panels as f64;
         let mut coefficients = vec![0.0; panels * degree];
         for p in 0..panels {
             let v = &values[p * degree..(p + 1) * degree];

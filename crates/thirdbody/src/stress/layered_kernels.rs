@@ -118,7 +118,7 @@ use super::kernels::{
 use super::long_wave::{
     long_wave_kernels, long_wave_on_row, long_wave_share, short_wave_share, Radial, BAND_EDGE,
 };
-use super::row_basis::{LongWaveRow, Share, ShortWaveRow};
+use super::row_basis::{finish_rows, LongWaveRow, Share, ShortWaveRow};
 use crate::body::layered::{Base, LayeredSolver, Stack};
 use crate::body::quadrature::GaussLegendre;
 use crate::body::quadrature::{ChebyshevPanels, InterleavedPanels};
@@ -572,8 +572,15 @@ impl LayeredStressKernels {
             }
             _ => {
                 let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
-                let short =
-                    remainder_on_lattice(lattice, lambda, thickness, k1, &remainder, short_waves);
+                let short = remainder_on_lattice(
+                    lattice,
+                    lambda,
+                    thickness,
+                    k1,
+                    &remainder,
+                    short_waves,
+                    None,
+                );
                 for ((t, s), l) in table.values.iter_mut().zip(short).zip(long) {
                     for ((v, a), b) in t.iter_mut().zip(s).zip(l) {
                         *v += a + b;
@@ -721,8 +728,21 @@ impl LayeredStressKernels {
         let h = lattice.cell;
         let k1 = SUB_CELL_SPLIT / h;
         let k_stop = k_stop.min(k1);
+        // One radial table for every pass of the depth: graded down to the lowest
+        // band's hundredth, up to the decay's cut (no pass reads beyond it).
+        let theta_top = (ALIAS_DECAY * h / lambda.max(1e-300))
+            .min(PI * (2 * FULL_ALIASES + 1) as f64 * 2f64.sqrt());
+        let shared = std::sync::Arc::new(RadialTable::new(
+            theta_top,
+            h,
+            2.0 * (lambda + self.stack.thickness()),
+            0.01 * k_stop * h,
+            remainder,
+        ));
         let mut add = |reach: f64, k_hi: f64, pass: Pass| {
-            self.add_near(lattice, reach, lambda, k_hi, remainder, pass, table);
+            self.add_near(
+                lattice, reach, lambda, k_hi, remainder, pass, table, &shared,
+            );
         };
         add(REACH / (k1 * h), k1, top);
         let mut k_hi = k1;
@@ -746,6 +766,7 @@ impl LayeredStressKernels {
         remainder: &Radial,
         pass: Pass,
         table: &mut InfluenceTable,
+        shared: &std::sync::Arc<RadialTable>,
     ) {
         let reach = reach.ceil() + 1.0;
         let clip = |first: f64, count: usize| {
@@ -766,8 +787,15 @@ impl LayeredStressKernels {
             y_first: lattice.y_first + y0 as f64,
             rows,
         };
-        let part =
-            remainder_on_lattice(&near, lambda, self.stack.thickness(), k_hi, remainder, pass);
+        let part = remainder_on_lattice(
+            &near,
+            lambda,
+            self.stack.thickness(),
+            k_hi,
+            remainder,
+            pass,
+            Some(shared),
+        );
         for (t, s) in table.values.iter_mut().zip(part) {
             for r in 0..rows {
                 for c in 0..cols {
@@ -1117,6 +1145,7 @@ impl StressKernels for LayeredStressKernels {
         low.add_many(&jobs, &mut remainders);
         let jobs: Vec<&[[f64; 4]]> = plans.iter().map(|p| p.long.as_slice()).collect();
         long.add_many(&jobs, &mut remainders);
+        remainders.iter_mut().for_each(finish_rows);
         source.keep(RowWork {
             depths: plans.iter().map(|p| p.z).collect(),
             remainders,
@@ -1252,8 +1281,9 @@ fn remainder_on_lattice(
     k1: f64,
     radial: &Radial,
     pass: Pass,
+    shared: Option<&std::sync::Arc<RadialTable>>,
 ) -> [Vec<f64>; COMPONENTS] {
-    let spectrum = BoxSpectrum::new(lattice, lambda, thickness, k1, radial, pass);
+    let spectrum = BoxSpectrum::new(lattice, lambda, thickness, k1, radial, pass, shared);
     let (ax, ay) = (&spectrum.ax, &spectrum.ay);
     let half_x = ax.len / 2 + 1;
 
@@ -1348,7 +1378,7 @@ fn remainder_on_row(
     source: &RowSource,
     row: &mut [Vec<f64>; COMPONENTS],
 ) {
-    let spectrum = BoxSpectrum::new(lattice, lambda, thickness, k1, radial, pass);
+    let spectrum = BoxSpectrum::new(lattice, lambda, thickness, k1, radial, pass, None);
     let (ax, ay) = (&spectrum.ax, &spectrum.ay);
     assert_eq!(ax.len, ay.len, "a square box");
     assert_eq!(ax.frac, 0.0, "outputs at cell centres along x");
@@ -1528,7 +1558,7 @@ struct BoxSpectrum {
     ay: Axis,
     tx: Vec<AxisTerms>,
     ty: Vec<AxisTerms>,
-    radial_table: RadialTable,
+    radial_table: std::sync::Arc<RadialTable>,
     pass: Pass,
     k1h: f64,
     theta_cut: f64,
@@ -1561,6 +1591,7 @@ impl BoxSpectrum {
         k1: f64,
         radial: &Radial,
         pass: Pass,
+        shared: Option<&std::sync::Arc<RadialTable>>,
     ) -> Self {
         let h = lattice.cell;
         let k1h = k1 * h;
@@ -1625,8 +1656,16 @@ impl BoxSpectrum {
         let theta_top = (PI * (2 * aliases + 1) as f64 * 2f64.sqrt()).min(theta_max);
         // The longest length in the transfer's exponentials is about z + 2 h1 <= 2 lambda + 2 h1.
         // Below k1 / 100 the high-pass factor is below 1e-16.
-        let radial_table =
-            RadialTable::new(theta_top, h, 2.0 * (lambda + thickness), 0.01 * low, radial);
+        let radial_table = match shared {
+            Some(table) => table.clone(),
+            None => std::sync::Arc::new(RadialTable::new(
+                theta_top,
+                h,
+                2.0 * (lambda + thickness),
+                0.01 * low,
+                radial,
+            )),
+        };
 
         // Per axis: for each base index and alias order, theta = k h, sinc and the phase
         // of the fractional offset.
@@ -1864,6 +1903,7 @@ impl RadialTable {
             .collect();
         let ks: Vec<f64> = points.iter().map(|&t| t / h).collect();
         let values = radial.eval_all(&ks);
+        let cosines = ChebyshevPanels::dct_cosines(PANEL_DEGREE);
         let mut offset = 0;
         let mut tables = spans.iter().map(|&(lo, hi, n)| {
             let v = &values[offset..offset + n * PANEL_DEGREE];
@@ -1872,7 +1912,7 @@ impl RadialTable {
                 lo,
                 InterleavedPanels::new(std::array::from_fn(|q| {
                     let column: Vec<f64> = v.iter().map(|r| r[q]).collect();
-                    ChebyshevPanels::from_values(lo, hi, n, PANEL_DEGREE, &column)
+                    ChebyshevPanels::from_values_with(lo, hi, n, &cosines, &column)
                 })),
             )
         });

@@ -253,6 +253,7 @@ impl ShortWaveRow {
                 line
             })
             .collect();
+        to_sum_and_difference(&mut psi, nx);
         let psi_band = psi.split_off(count * nx);
         ShortWaveRow {
             panels,
@@ -400,6 +401,8 @@ impl LongWaveRow {
                 rows
             })
             .collect();
+        let mut psi = psi;
+        to_sum_and_difference(&mut psi, nx);
         LongWaveRow {
             thetas: nodes.iter().map(|&(k, _)| k).collect(),
             psi,
@@ -426,39 +429,92 @@ impl LongWaveRow {
 /// block of depths (the depths' outputs stay in cache; read per depth, the rows of
 /// all nodes streamed from memory once per depth). Blocks of depths run in parallel.
 fn add_rows_many(jobs: &[(&[f64], &[[f64; 4]])], nx: usize, rows: &mut [[Vec<f64>; COMPONENTS]]) {
+    // Eight depths' outputs over 64 columns (24 kB) stay in the first-level cache
+    // while the nodes' rows stream past.
     const BLOCK: usize = 8;
+    const COLUMNS: usize = 64;
     rows.par_chunks_mut(BLOCK)
         .zip(jobs.par_chunks(BLOCK))
         .for_each(|(rows, jobs)| {
             let nodes = jobs.iter().map(|(_, v)| v.len()).max().unwrap_or(0);
-            for b in 0..nodes {
-                for (row, &(psi, values)) in rows.iter_mut().zip(jobs) {
-                    if let Some(&value) = values.get(b) {
-                        add_node(&psi[b * ANGULAR * nx..][..ANGULAR * nx], value, nx, row);
+            for first in (0..nx).step_by(COLUMNS) {
+                let span = first..(first + COLUMNS).min(nx);
+                for b in 0..nodes {
+                    for (row, &(psi, values)) in rows.iter_mut().zip(jobs) {
+                        if let Some(&value) = values.get(b) {
+                            let psi = &psi[b * ANGULAR * nx..][..ANGULAR * nx];
+                            add_node(psi, value, nx, span.clone(), row);
+                        }
                     }
                 }
             }
         });
 }
 
-/// `row +=` the nine products of the transfer `[r0, r1, r2, r3]` at one node with its
-/// angular rows `psi` (`c^2, s^2, c s, i c, i s`, each `nx` long).
-fn add_node(psi: &[f64], [r0, r1, r2, r3]: [f64; 4], nx: usize, row: &mut [Vec<f64>; COMPONENTS]) {
+/// Replaces each node's first two angular rows `c^2, s^2` by their sum and
+/// difference ([`add_node`] then takes six products per column instead of nine).
+fn to_sum_and_difference(psi: &mut [f64], nx: usize) {
+    for node in psi.chunks_exact_mut(ANGULAR * nx) {
+        let (cc, rest) = node.split_at_mut(nx);
+        for (a, b) in cc.iter_mut().zip(&mut rest[..nx]) {
+            let (sum, difference) = (*a + *b, *a - *b);
+            *a = sum;
+            *b = difference;
+        }
+    }
+}
+
+/// Turns rows summed by [`add_node`] (`[A, B, sigma_z, tau_xy, tau_xz, tau_yz]`, A and B
+/// the halves of the sum and difference of `sigma_x` and `sigma_y`) into the six
+/// stresses.
+pub(super) fn finish_rows(row: &mut [Vec<f64>; COMPONENTS]) {
+    let (a, rest) = row.split_at_mut(1);
+    for (x, y) in a[0].iter_mut().zip(rest[0].iter_mut()) {
+        let (sum, difference) = (*x, *y);
+        *x = sum + difference;
+        *y = sum - difference;
+    }
+}
+
+/// `row +=` the six products of the transfer `[r0, r1, r2, r3]` at one node with its
+/// angular rows `psi` (`c^2 + s^2, c^2 - s^2, c s, i c, i s`, each `nx` long), on
+/// the columns `span`, into `[A, B, sigma_z, tau_xy, tau_xz, tau_yz]` ([`finish_rows`]):
+/// `sigma_x = r0 c^2 + r1 s^2 = A + B`, `sigma_y = A - B` with `A = (r0 + r1) / 2 (c^2
+/// + s^2)`, `B = (r0 - r1) / 2 (c^2 - s^2)`.
+fn add_node(
+    psi: &[f64],
+    [r0, r1, r2, r3]: [f64; 4],
+    nx: usize,
+    span: std::ops::Range<usize>,
+    row: &mut [Vec<f64>; COMPONENTS],
+) {
     if r0 == 0.0 && r1 == 0.0 && r2 == 0.0 && r3 == 0.0 {
         return;
     }
-    let (cc, rest) = psi.split_at(nx);
-    let (ss, rest) = rest.split_at(nx);
-    let (cs, rest) = rest.split_at(nx);
-    let (c, s) = rest.split_at(nx);
+    let part = |a: usize| &psi[a * nx..][span.clone()];
+    let (sum, difference, cs, c, s) = (part(0), part(1), part(2), part(3), part(4));
     let [o0, o1, o2, o3, o4, o5] = row;
-    for i in 0..nx {
-        o0[i] += r0 * cc[i] + r1 * ss[i];
-        o1[i] += r0 * ss[i] + r1 * cc[i];
-        o2[i] += r2 * (cc[i] + ss[i]);
-        o3[i] += (r0 - r1) * cs[i];
-        o4[i] += r3 * c[i];
-        o5[i] += r3 * s[i];
+    let (half_sum, half_difference, d) = (0.5 * (r0 + r1), 0.5 * (r0 - r1), r0 - r1);
+    for (((((o0, o1), o2), o3), (&sum, &difference)), &cs) in o0[span.clone()]
+        .iter_mut()
+        .zip(&mut o1[span.clone()])
+        .zip(&mut o2[span.clone()])
+        .zip(&mut o3[span.clone()])
+        .zip(sum.iter().zip(difference))
+        .zip(cs)
+    {
+        *o0 += half_sum * sum;
+        *o1 += half_difference * difference;
+        *o2 += r2 * sum;
+        *o3 += d * cs;
+    }
+    for ((o4, o5), (&c, &s)) in o4[span.clone()]
+        .iter_mut()
+        .zip(&mut o5[span])
+        .zip(c.iter().zip(s))
+    {
+        *o4 += r3 * c;
+        *o5 += r3 * s;
     }
 }
 
