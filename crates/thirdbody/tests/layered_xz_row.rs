@@ -65,7 +65,11 @@ fn direct(grid: &Grid, p: &[f64], body: &Body, y: f64, z: f64) -> [Vec<f64>; 6] 
 }
 
 fn check(body: &Body, depths: &[f64]) {
-    check_on(Grid::centred(20, 14, 0.1, [0.0, 0.0]).unwrap(), body, depths);
+    check_on(
+        Grid::centred(20, 14, 0.1, [0.0, 0.0]).unwrap(),
+        body,
+        depths,
+    );
 }
 
 fn check_on(grid: Grid, body: &Body, depths: &[f64]) {

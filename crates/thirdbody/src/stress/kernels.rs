@@ -605,12 +605,12 @@ impl HomogeneousStressKernels {
     }
 
     /// The table of `combine(G(0), G')` at depth z, Love's kernels for nu = 0 and
-    /// their derivative in nu ([`Self::fill_poisson_split`]) combined linearly, by
-    /// the same map at every offset: applied to the corner primitives before their
+    /// their derivative in nu ([`Self::fill_poisson_split`]) combined by a linear
+    /// map, the same at every offset: applied to the corner primitives before their
     /// four-corner sums (which are linear and the same for every component of one
-    /// parity), so one table is summed instead of two. `combine` may mix only
-    /// components of the same parity in x and y (`sigma_x`, `sigma_y`, `sigma_z`
-    /// together; each shear with itself).
+    /// parity), so one table is summed instead of two. `combine` must be linear and
+    /// mix only components of the same parity in x and y (`sigma_x`, `sigma_y`,
+    /// `sigma_z` together; each shear with itself).
     pub(crate) fn fill_poisson_combined(
         z: f64,
         lattice: &OffsetLattice,
@@ -619,21 +619,16 @@ impl HomogeneousStressKernels {
     ) {
         let corners = FoldedCorners::new(lattice);
         let (zero, slope) = corners.primitives2(|u, v| corner_primitives_split(u, v, z));
-        let n = zero[0].len();
-        let mut combined: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; n]);
-        for i in 0..n {
-            let g0 = std::array::from_fn(|c| zero[c][i]);
-            let g1 = std::array::from_fn(|c| slope[c][i]);
-            for (dst, v) in combined.iter_mut().zip(combine(&g0, &g1)) {
-                dst[i] = v;
-            }
-        }
+        let none = [0.0; COMPONENTS];
+        let zero_map = linear_map(|e| combine(e, &none));
+        let slope_map = linear_map(|e| combine(&none, e));
+        let combined = apply_maps(&[(&zero_map, &zero), (&slope_map, &slope)]);
         corners.difference(&combined, lattice, table);
     }
 
     /// As [`Self::fill_poisson_combined`] at depth `lambda`, with Love's kernels of
     /// Poisson ratio nu at another depth z added to the combination:
-    /// `combine(G_nu(z), G(0)(lambda), G'(lambda))`, one table summed.
+    /// `combine(G_nu(z), G(0)(lambda), G'(lambda))` (linear), one table summed.
     pub(crate) fn fill_love_and_split_combined(
         z: f64,
         nu: f64,
@@ -649,18 +644,49 @@ impl HomogeneousStressKernels {
         let corners = FoldedCorners::new(lattice);
         let own = corners.primitives(|u, v| corner_primitives(u, v, z, nu));
         let (zero, slope) = corners.primitives2(|u, v| corner_primitives_split(u, v, lambda));
-        let n = zero[0].len();
-        let mut combined: [Vec<f64>; COMPONENTS] = std::array::from_fn(|_| vec![0.0; n]);
-        for i in 0..n {
-            let g = std::array::from_fn(|c| own[c][i]);
-            let g0 = std::array::from_fn(|c| zero[c][i]);
-            let g1 = std::array::from_fn(|c| slope[c][i]);
-            for (dst, v) in combined.iter_mut().zip(combine(&g, &g0, &g1)) {
-                dst[i] = v;
-            }
-        }
+        let none = [0.0; COMPONENTS];
+        let own_map = linear_map(|e| combine(e, &none, &none));
+        let zero_map = linear_map(|e| combine(&none, e, &none));
+        let slope_map = linear_map(|e| combine(&none, &none, e));
+        let combined = apply_maps(&[(&own_map, &own), (&zero_map, &zero), (&slope_map, &slope)]);
         corners.difference(&combined, lattice, table);
     }
+}
+
+/// A linear map of the six components, `m[out][in]`.
+type LinearMap = [[f64; COMPONENTS]; COMPONENTS];
+
+/// The matrix of a linear map of the six components, from its images of the unit
+/// vectors.
+fn linear_map(map: impl Fn(&[f64; COMPONENTS]) -> [f64; COMPONENTS]) -> LinearMap {
+    let mut m = [[0.0; COMPONENTS]; COMPONENTS];
+    for input in 0..COMPONENTS {
+        let mut e = [0.0; COMPONENTS];
+        e[input] = 1.0;
+        for (out, v) in map(&e).into_iter().enumerate() {
+            m[out][input] = v;
+        }
+    }
+    m
+}
+
+/// `sum_k m_k v_k` over arrays of corner values, per component: one vectorisable
+/// pass per nonzero matrix entry.
+fn apply_maps(maps: &[(&LinearMap, &[Vec<f64>; COMPONENTS])]) -> [Vec<f64>; COMPONENTS] {
+    let n = maps.first().map_or(0, |(_, v)| v[0].len());
+    std::array::from_fn(|out| {
+        let mut acc = vec![0.0; n];
+        for (m, values) in maps {
+            for (input, &weight) in m[out].iter().enumerate() {
+                if weight != 0.0 {
+                    for (a, &v) in acc.iter_mut().zip(&values[input]) {
+                        *a += weight * v;
+                    }
+                }
+            }
+        }
+        acc
+    })
 }
 
 impl FoldedCorners {

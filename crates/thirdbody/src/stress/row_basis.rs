@@ -161,7 +161,7 @@ impl ShortWaveRow {
                 .min(panels.len() - 1)
         };
         // Per column jx: sum_jy l_b w (1 - chi) f_a P, `[node * ANGULAR + a]`.
-        let columns: Vec<Vec<Complex<f64>>> = (0..half)
+        let columns: Vec<Vec<f64>> = (0..half)
             .into_par_iter()
             .map(|jx| {
                 let tx = base(jx);
@@ -169,7 +169,10 @@ impl ShortWaveRow {
                     return Vec::new();
                 }
                 let wx = sinc(0.5 * tx) * norm;
-                let mut sums = vec![Complex::default(); total];
+                // Real and imaginary parts apart, `[((panel * ANGULAR + a) * 2 + part) *
+                // POINTS + b]` per family, so that a point's update of its panel is ten
+                // contiguous rank-one updates that vectorise.
+                let mut sums = vec![0.0; 2 * total];
                 let column = spectrum.column(jx);
                 // Rows +ty and -ty share theta, c and the Lagrange weights, and s
                 // changes sign: their sum takes the even factors, their difference the
@@ -205,15 +208,25 @@ impl ShortWaveRow {
                     let l = lagrange(&panel_points[panel], &bary, theta);
                     let (cc, ss, cs) = (c * c, s * s, c * s);
                     let mut accumulate = |first: usize, scale: f64| {
-                        let (even, odd) = (even * scale, odd * scale);
-                        let at = &mut sums[first + panel * POINTS * ANGULAR..][..POINTS * ANGULAR];
-                        for (slot, &lb) in at.chunks_exact_mut(ANGULAR).zip(&l) {
-                            let (ue, uo) = (even * lb, odd * lb);
-                            slot[0] += ue * cc;
-                            slot[1] += ue * ss;
-                            slot[2] += uo * cs;
-                            slot[3] += ue * c;
-                            slot[4] += uo * s;
+                        let (e, o) = (even * scale, odd * scale);
+                        let parts = [
+                            e.re * cc,
+                            e.im * cc,
+                            e.re * ss,
+                            e.im * ss,
+                            o.re * cs,
+                            o.im * cs,
+                            e.re * c,
+                            e.im * c,
+                            o.re * s,
+                            o.im * s,
+                        ];
+                        let at = &mut sums[2 * first + panel * 2 * ANGULAR * POINTS..]
+                            [..2 * ANGULAR * POINTS];
+                        for (line, &part) in at.chunks_exact_mut(POINTS).zip(&parts) {
+                            for (v, &lb) in line.iter_mut().zip(&l) {
+                                *v += part * lb;
+                            }
                         }
                     };
                     if high_pass != 0.0 {
@@ -226,31 +239,52 @@ impl ShortWaveRow {
                 sums
             })
             .collect();
-        // Along x: one inverse transform per node and angular row.
+        // Along x: one inverse transform per node and angular row, a panel of a
+        // family at a time (its sums are contiguous in every column).
         let inverse = RealFftPlanner::<f64>::new().plan_fft_inverse(len);
-        let mut psi: Vec<f64> = (0..total)
-            .into_par_iter()
-            .flat_map_iter(|na| {
-                let shear = na % ANGULAR >= 3;
-                let mut spec: Vec<Complex<f64>> = columns
-                    .iter()
-                    .map(|col| {
-                        let v = col.get(na).copied().unwrap_or_default();
-                        if shear {
-                            Complex::new(-v.im, v.re)
-                        } else {
-                            v
-                        }
-                    })
-                    .collect();
-                spec[0].im = 0.0;
-                spec[half - 1].im = 0.0;
+        let block = 2 * ANGULAR * POINTS;
+        let panels_of = |nodes: usize| nodes / POINTS;
+        let tasks: Vec<usize> = (0..panels_of(nodes.len()))
+            .map(|p| p * block)
+            .chain((0..panels_of(band_nodes)).map(|p| 2 * count + p * block))
+            .collect();
+        let mut psi: Vec<f64> = tasks
+            .par_iter()
+            .flat_map_iter(|&first| {
+                // spec[k][jx], k = (a * 2 + part) * POINTS + b as in the columns.
+                let mut gathered = vec![0.0; block * half];
+                for (jx, col) in columns.iter().enumerate() {
+                    if col.is_empty() {
+                        continue;
+                    }
+                    for (k, &v) in col[first..first + block].iter().enumerate() {
+                        gathered[k * half + jx] = v;
+                    }
+                }
+                let mut out = vec![0.0; POINTS * ANGULAR * nx];
+                let mut spec = vec![Complex::default(); half];
                 let mut line = vec![0.0; len];
-                inverse
-                    .process(&mut spec, &mut line)
-                    .expect("FFT lengths are fixed by the plan");
-                line.truncate(nx);
-                line
+                for b in 0..POINTS {
+                    for a in 0..ANGULAR {
+                        let re = &gathered[((a * 2) * POINTS + b) * half..][..half];
+                        let im = &gathered[((a * 2 + 1) * POINTS + b) * half..][..half];
+                        let shear = a >= 3;
+                        for ((s, &r), &i) in spec.iter_mut().zip(re).zip(im) {
+                            *s = if shear {
+                                Complex::new(-i, r)
+                            } else {
+                                Complex::new(r, i)
+                            };
+                        }
+                        spec[0].im = 0.0;
+                        spec[half - 1].im = 0.0;
+                        inverse
+                            .process(&mut spec, &mut line)
+                            .expect("FFT lengths are fixed by the plan");
+                        out[(b * ANGULAR + a) * nx..][..nx].copy_from_slice(&line[..nx]);
+                    }
+                }
+                out
             })
             .collect();
         to_sum_and_difference(&mut psi, nx);
@@ -431,8 +465,8 @@ impl LongWaveRow {
 fn add_rows_many(jobs: &[(&[f64], &[[f64; 4]])], nx: usize, rows: &mut [[Vec<f64>; COMPONENTS]]) {
     // Eight depths' outputs over 64 columns (24 kB) stay in the first-level cache
     // while the nodes' rows stream past.
-    const BLOCK: usize = 8;
-    const COLUMNS: usize = 64;
+    const BLOCK: usize = 16;
+    const COLUMNS: usize = 256;
     rows.par_chunks_mut(BLOCK)
         .zip(jobs.par_chunks(BLOCK))
         .for_each(|(rows, jobs)| {
