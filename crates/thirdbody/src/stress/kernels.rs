@@ -400,16 +400,23 @@ impl PressureSpectrum {
         assert!(nx <= len && ny <= len, "the box holds the pressure");
         let half = len / 2 + 1;
         let forward = realfft::RealFftPlanner::<f64>::new().plan_fft_forward(len);
-        // Along x, each source row.
+        // Along x, each source row (an unloaded row's spectrum is zero: empty), up to
+        // the columns wanted.
+        let columns = columns.min(half);
         let rows: Vec<Vec<Complex<f64>>> = (0..ny)
             .into_par_iter()
             .map(|l| {
+                let line = &pressure[l * nx..(l + 1) * nx];
+                if line.iter().all(|&p| p == 0.0) {
+                    return Vec::new();
+                }
                 let mut real = vec![0.0; len];
-                real[..nx].copy_from_slice(&pressure[l * nx..(l + 1) * nx]);
+                real[..nx].copy_from_slice(line);
                 let mut spec = vec![Complex::default(); half];
                 forward
                     .process(&mut real, &mut spec)
                     .expect("FFT lengths are fixed by the plan");
+                spec.truncate(columns);
                 spec
             })
             .collect();
@@ -421,12 +428,14 @@ impl PressureSpectrum {
                 Complex::from_polar(1.0, 2.0 * PI * turns as f64 / len as f64)
             })
             .collect();
-        let values: Vec<Complex<f64>> = (0..columns.min(half))
+        let values: Vec<Complex<f64>> = (0..columns)
             .into_par_iter()
             .flat_map_iter(|jx| {
                 let mut column = vec![Complex::default(); len];
                 for (c, r) in column.iter_mut().zip(&rows) {
-                    *c = r[jx];
+                    if let Some(&v) = r.get(jx) {
+                        *c = v;
+                    }
                 }
                 fft_y.process(&mut column);
                 column.into_iter().zip(&phase).map(|(c, p)| c * p)
@@ -435,7 +444,7 @@ impl PressureSpectrum {
         PressureSpectrum {
             len,
             whole,
-            columns: columns.min(half),
+            columns,
             values,
         }
     }
