@@ -248,7 +248,7 @@ pub trait StressKernels: Sync {
     /// Work that the [`StressKernels::fill_row`]s of a section's `depths` share,
     /// built once before them and kept in `source` ([`RowSource::keep`]). The
     /// default keeps nothing.
-    fn prepare_row(&self, lattice: &OffsetLattice, source: &RowSource, depths: &[f64]) {
+    fn prepare_row(&self, lattice: &OffsetLattice, source: &mut RowSource, depths: &[f64]) {
         let _ = (lattice, source, depths);
     }
 
@@ -290,7 +290,7 @@ pub struct RowSource<'a> {
     #[allow(clippy::type_complexity)]
     moments: std::sync::Mutex<Vec<(OffsetLattice, f64, std::sync::Arc<Vec<f64>>)>>,
     /// What a body's [`StressKernels::prepare_row`] built for all the depths.
-    prepared: std::sync::OnceLock<Box<dyn std::any::Any + Send + Sync>>,
+    prepared: Option<Box<dyn std::any::Any + Send + Sync>>,
 }
 
 impl<'a> RowSource<'a> {
@@ -305,19 +305,19 @@ impl<'a> RowSource<'a> {
             offset,
             spectra: std::sync::Mutex::new(Vec::new()),
             moments: std::sync::Mutex::new(Vec::new()),
-            prepared: std::sync::OnceLock::new(),
+            prepared: None,
         }
     }
 
     /// Keeps the work a body's [`StressKernels::prepare_row`] shares between the
-    /// depths (the first kept stays).
-    pub(crate) fn keep(&self, work: impl std::any::Any + Send + Sync) {
-        let _ = self.prepared.set(Box::new(work));
+    /// depths.
+    pub(crate) fn keep(&mut self, work: impl std::any::Any + Send + Sync) {
+        self.prepared = Some(Box::new(work));
     }
 
     /// The work kept by [`Self::keep`], if it is a `T`.
     pub(crate) fn kept<T: 'static>(&self) -> Option<&T> {
-        self.prepared.get().and_then(|w| w.downcast_ref::<T>())
+        self.prepared.as_ref().and_then(|w| w.downcast_ref::<T>())
     }
 
     /// The pressure, `[l * nx + k]`.

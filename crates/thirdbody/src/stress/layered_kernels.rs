@@ -982,7 +982,7 @@ impl StressKernels for LayeredStressKernels {
 
     /// The short waves' rows of every depth that sums them on one box
     /// ([`ShortWaveRow`], from the pressure's spectrum on that box).
-    fn prepare_row(&self, lattice: &OffsetLattice, source: &RowSource, depths: &[f64]) {
+    fn prepare_row(&self, lattice: &OffsetLattice, source: &mut RowSource, depths: &[f64]) {
         if !row_lattice(lattice, source) {
             return;
         }

@@ -174,8 +174,8 @@ pub(crate) fn xz_plane(
     // The pressure and the row, for the part of the kernels a body sums against the
     // pressure's spectrum (the row's offset from source row 0 is that of row l_max
     // plus l_max).
-    let source = RowSource::new(pressure, nx, ny, y_first + l_max as f64);
-    kernels.prepare_row(&lattice, &source, depths);
+    let mut source = RowSource::new(pressure, nx, ny, y_first + l_max as f64);
+    kernels.prepare_row(&lattice, &mut source, depths);
     let scratch_len = forward.get_scratch_len().max(inverse.get_scratch_len());
     let scale = 1.0 / width as f64;
     let per_depth: Vec<Components> = per_thread_map(
