@@ -665,49 +665,18 @@ impl LayeredStressKernels {
         } else {
             HomogeneousStressKernels { material }.fill(z, lattice, table);
         }
-        // A = -(G(1/2) - G(0)): transfer e^{-k l} (s^2, c^2, -c s) in (xx, yy, xy);
-        // B: transfer k l e^{-k l} (c^2, s^2, c s); G(0)'s shears: i k l e^{-k l} (c, s).
-        // (A at lambda, B at the slope's depth mu; one pass per component.)
-        {
-            let [a0, a1, _, a3, _, _] = &dnu.values;
-            let [s0, s1, _, s3, _, _] = &dnu_s.values;
-            let [z0, z1, _, z3, z4, z5] = &zero_s.values;
-            let [v0, v1, v2, v3, v4, v5] = &mut table.values;
-            let (hx, he) = (-0.5 * d_xi, -0.5 * d_eta);
-            for (((((v, a0), a1), s0), s1), (z0, z1)) in v0
-                .iter_mut()
-                .zip(a0)
-                .zip(a1)
-                .zip(s0)
-                .zip(s1)
-                .zip(z0.iter().zip(z1))
-            {
-                let (bxx, byy) = (z0 - 0.5 * s1, z1 - 0.5 * s0);
-                *v += hx * a1 + he * a0 + al * bxx + be * byy;
-            }
-            for (((((v, a0), a1), s0), s1), (z0, z1)) in v1
-                .iter_mut()
-                .zip(a0)
-                .zip(a1)
-                .zip(s0)
-                .zip(s1)
-                .zip(z0.iter().zip(z1))
-            {
-                let (bxx, byy) = (z0 - 0.5 * s1, z1 - 0.5 * s0);
-                *v += hx * a0 + he * a1 + al * byy + be * bxx;
-            }
-            for ((((v, s0), s1), z0), z1) in v2.iter_mut().zip(s0).zip(s1).zip(z0).zip(z1) {
-                *v += ga * (z0 + z1 - 0.5 * (s0 + s1));
-            }
-            let (ha, ab) = (0.5 * (d_xi - d_eta), al - be);
-            for (((v, a3), s3), z3) in v3.iter_mut().zip(a3).zip(s3).zip(z3) {
-                *v += ha * a3 + ab * (z3 + 0.5 * s3);
-            }
-            for (v, z) in v4.iter_mut().zip(z4) {
-                *v += ep * z;
-            }
-            for (v, z) in v5.iter_mut().zip(z5) {
-                *v += ep * z;
+        // The carriers: A at lambda, B and the shears at the slope's depth mu.
+        let at = |t: &InfluenceTable, n: usize| std::array::from_fn(|c| t.values[c][n]);
+        for n in 0..lattice.cols * lattice.rows {
+            let terms = carrier_terms_at(
+                &at(dnu, n),
+                &at(zero_s, n),
+                &at(dnu_s, n),
+                (d_xi, d_eta),
+                [al, be, ga, ep],
+            );
+            for (v, t) in table.values.iter_mut().zip(terms) {
+                v[n] += t;
             }
         }
         drop(slope_pair);
@@ -1454,11 +1423,24 @@ impl RowWork {
 fn carrier_terms(
     g0: &[f64; COMPONENTS],
     g1: &[f64; COMPONENTS],
+    long_wave: (f64, f64),
+    slope: [f64; 4],
+) -> [f64; COMPONENTS] {
+    carrier_terms_at(g1, g0, g1, long_wave, slope)
+}
+
+/// [`carrier_terms`] with the long-wave carrier's `G'` (`g1_long`) at one depth and
+/// the slope's `G(0)`, `G'` at another (the sub-cell split's).
+fn carrier_terms_at(
+    g1_long: &[f64; COMPONENTS],
+    g0: &[f64; COMPONENTS],
+    g1: &[f64; COMPONENTS],
     (d_xi, d_eta): (f64, f64),
     [al, be, ga, ep]: [f64; 4],
 ) -> [f64; COMPONENTS] {
-    let (axx, ayy, axy) = (-0.5 * g1[0], -0.5 * g1[1], -0.5 * g1[3]);
-    let (bxx, byy, bxy) = (g0[0] + ayy, g0[1] + axx, g0[3] - axy);
+    let (axx, ayy, axy) = (-0.5 * g1_long[0], -0.5 * g1_long[1], -0.5 * g1_long[3]);
+    let (sxx, syy, sxy) = (-0.5 * g1[0], -0.5 * g1[1], -0.5 * g1[3]);
+    let (bxx, byy, bxy) = (g0[0] + syy, g0[1] + sxx, g0[3] - sxy);
     [
         d_xi * ayy + d_eta * axx + al * bxx + be * byy,
         d_xi * axx + d_eta * ayy + al * byy + be * bxx,
