@@ -246,7 +246,7 @@ pub trait StressKernels: Sync {
     }
 
     /// Work that the [`StressKernels::fill_row`]s of a section's `depths` share,
-    /// built once before them and kept in `source` ([`RowSource::keep`]). The
+    /// built once before them and kept in `source` (`RowSource::keep`). The
     /// default keeps nothing.
     fn prepare_row(&self, lattice: &OffsetLattice, source: &mut RowSource, depths: &[f64]) {
         let _ = (lattice, source, depths);

@@ -804,9 +804,8 @@ impl LayeredStressKernels {
         mu: f64,
         k: f64,
     ) -> [f64; 4] {
-        let d = self.difference(solver, layer, z, carrier, k);
-        let e = k * (-k * mu).exp();
-        std::array::from_fn(|q| d[q] - r1[q] * e)
+        let t = self.transfer(solver, k, layer, z);
+        self.remainder_from(t, layer, z, carrier, r1, mu, k)
     }
 
     /// [`Self::remainder`] from a solver already solved at k (one per node of an XZ
@@ -823,6 +822,21 @@ impl LayeredStressKernels {
         k: f64,
     ) -> [f64; 4] {
         let t = solved.solved_response(layer, z).stress;
+        self.remainder_from(t, layer, z, carrier, r1, mu, k)
+    }
+
+    /// [`Self::remainder`] of the transfer `t` at k.
+    #[allow(clippy::too_many_arguments)]
+    fn remainder_from(
+        &self,
+        t: [f64; 4],
+        layer: usize,
+        z: f64,
+        carrier: (f64, f64, f64),
+        r1: [f64; 4],
+        mu: f64,
+        k: f64,
+    ) -> [f64; 4] {
         let d = self.difference_from(t, layer, z, carrier, k);
         let e = k * (-k * mu).exp();
         std::array::from_fn(|q| d[q] - r1[q] * e)
@@ -949,8 +963,9 @@ impl StressKernels for LayeredStressKernels {
         self.fill_parts(z, lattice, table, method, Some((source, row)));
     }
 
-    /// The short waves' rows of every depth that sums them on one box
-    /// ([`ShortWaveRow`], from the pressure's spectrum on that box).
+    /// The remainder of every depth of the section that takes it from rows built once
+    /// (`row_basis`: short waves on two periodic boxes, long waves at polar nodes),
+    /// kept in `source` for [`StressKernels::fill_row`].
     fn prepare_row(&self, lattice: &OffsetLattice, source: &mut RowSource, depths: &[f64]) {
         if !row_lattice(lattice, source) {
             return;
