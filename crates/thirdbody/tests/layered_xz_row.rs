@@ -170,3 +170,60 @@ fn wide_window_xz_section_is_the_direct_sum_of_the_table() {
     let grid = Grid::centred(72, 40, 0.05, [0.0, 0.0]).unwrap();
     check_on(grid, &body, &[0.0, 0.05, 0.2, 0.9, 1.6]);
 }
+
+/// A depth's stresses do not depend on the other depths of its section: the rows
+/// are built from the lattice, the stack and the pressure only (the Python package
+/// computes a section a few depths at a time and must equal the CLI's).
+#[test]
+fn a_depth_does_not_depend_on_the_other_depths_of_its_section() {
+    let body = Body::Layered(Stack {
+        layers: vec![
+            Ply {
+                material: elastic(4.0),
+                thickness: 0.075,
+            },
+            Ply {
+                material: elastic(0.5),
+                thickness: 0.3,
+            },
+        ],
+        base: Base::HalfSpace(elastic(1.0)),
+    });
+    let grid = Grid::centred(72, 40, 0.05, [0.0, 0.0]).unwrap();
+    let p = pressure(&grid);
+    let depths = [0.0, 0.05, 0.2, 0.6, 0.9, 1.6];
+    let all = stresses(
+        &grid,
+        &p,
+        &body,
+        &Section::XzPlane {
+            y: 0.0,
+            depths: depths.to_vec(),
+        },
+    )
+    .unwrap();
+    for part in [&depths[..1], &depths[1..3], &depths[3..]] {
+        let some = stresses(
+            &grid,
+            &p,
+            &body,
+            &Section::XzPlane {
+                y: 0.0,
+                depths: part.to_vec(),
+            },
+        )
+        .unwrap();
+        for (k, &z) in part.iter().enumerate() {
+            let k_all = depths.iter().position(|&d| d == z).unwrap();
+            for c in 0..6 {
+                for i in 0..grid.nx() {
+                    assert_eq!(
+                        some.components[c][some.index(i, 0, k)].to_bits(),
+                        all.components[c][all.index(i, 0, k_all)].to_bits(),
+                        "z {z}, component {c}, column {i}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -970,23 +970,19 @@ impl StressKernels for LayeredStressKernels {
         if !row_lattice(lattice, source) {
             return;
         }
+        // Everything below depends on the lattice, the stack and the pressure, not on
+        // the depths asked for: a depth's stresses are the same whichever other
+        // depths share its section (the Python package computes a section a few
+        // depths at a time). The decay length is at least the top layer's thickness
+        // (`2 h1 - z` in it, z below it), so the rows reach `ALIAS_DECAY / h1` (below
+        // pi: deeper depths with shorter decay lengths are summed in bands), and the
+        // band family exists when some depth can be banded (a top layer thinner than
+        // the alias threshold).
         let h = lattice.cell;
         let k1h = split_wavenumber(lattice) * h;
-        let lambdas: Vec<f64> = depths
-            .iter()
-            .filter(|&&z| self.method_at(z, lattice) == StressMethod::Full)
-            .map(|&z| self.decay_length(self.layer(z), z))
-            .collect();
-        let mut theta_top = lambdas
-            .iter()
-            .filter(|&&lambda| !needs_bands(lattice, lambda))
-            .map(|lambda| ALIAS_DECAY * h / lambda)
-            .fold(0.0, f64::max);
-        // Depths summed in bands take the bands below `kx` from the rows: the
-        // largest band split whose band edge needs no aliases.
-        let kxh = lambdas
-            .iter()
-            .any(|&lambda| needs_bands(lattice, lambda))
+        let h1 = self.top_thickness();
+        let banded_possible = needs_bands(lattice, h1);
+        let kxh = banded_possible
             .then(|| {
                 let mut kxh = SUB_CELL_SPLIT;
                 while BAND_EDGE * kxh >= ROW_BAND_TOP {
@@ -995,12 +991,13 @@ impl StressKernels for LayeredStressKernels {
                 kxh
             })
             .filter(|&kxh| kxh > k1h);
+        let mut theta_top = (ALIAS_DECAY * h / h1).min(ROW_TOP);
         if let Some(kxh) = kxh {
             theta_top = theta_top.max(BAND_EDGE * kxh);
         }
-        if theta_top == 0.0 || theta_top >= PI {
-            return;
-        }
+        // Depths down to `ROW_DEPTHS` times the offsets' reach (the long waves'
+        // panels are graded to the longest length there).
+        let deepest = ROW_DEPTHS * offset_reach(lattice) * h;
         // The short waves `1 - chi(k / k1)` in two families: above `k2` (`1 - chi(k /
         // k2)`, and a banded depth's `chi(k / kx) - chi(k / k2)`) on a box only
         // `REACH / k2` wider than the offsets, and the band `chi(k / k2) - chi(k /
@@ -1057,7 +1054,7 @@ impl StressKernels for LayeredStressKernels {
             source.offset,
             k1h,
             offset_reach(lattice),
-            self.longest_length(depths.iter().fold(0.0, |m: f64, &z| m.max(z))) / h,
+            self.longest_length(deepest) / h,
         );
         let solved = |thetas: &[f64]| -> Vec<LayeredSolver> {
             thetas
@@ -1083,7 +1080,7 @@ impl StressKernels for LayeredStressKernels {
         let plans: Vec<DepthRows> = zs
             .par_iter()
             .filter_map(|&z| {
-                if self.method_at(z, lattice) != StressMethod::Full {
+                if self.method_at(z, lattice) != StressMethod::Full || z > deepest {
                     return None;
                 }
                 let layer = self.layer(z);
@@ -1402,6 +1399,15 @@ fn remainder_on_row(
         }
     }
 }
+
+/// The largest `|k| h` of the XZ rows' short waves, just below pi: a depth whose
+/// remainder reaches beyond (a decay length within 0.1 % of the alias threshold)
+/// sums its short waves per depth.
+const ROW_TOP: f64 = 0.999 * PI;
+
+/// The XZ rows serve depths down to this many times the largest offset of the
+/// section's lattice (deeper ones sum their remainder per depth).
+const ROW_DEPTHS: f64 = 2.0;
 
 /// The largest band edge (`BAND_EDGE kx h`) of the part of a banded depth's short waves
 /// that an XZ section takes from its rows: below pi, so that no aliases are needed,
