@@ -9,9 +9,13 @@
 //! shared by every depth, `r_q(theta) = sum_b r_q(theta_b) l_b(theta)` (barycentric
 //! Lagrange basis `l_b`, Berrut and Trefethen, SIAM Review 46 (2004) 501), gives
 //! `sigma_c(x_i) = sum_{q,b} r_q(theta_b, z) Psi_{c,q,b}(x_i)`: the five angular rows
-//! `Psi_{a,b}(x_i) = IFFT_x[sum_jy l_b w (1 - chi) f_a P]` are built once per section,
-//! and a depth costs the transfer at the nodes and `nodes x 9 x nx` products instead
-//! of a sum over the box's wavenumbers.
+//! `Psi_{a,b}(x_i) = IFFT_x[sum_jy l_b w (1 - chi) f_a P]` (kept as `c^2 + s^2`, `c^2 -
+//! s^2`, `c s`, `c`, `s`) are built once per section, and a depth costs the transfer
+//! at the nodes and six products per node and column instead of a sum over the box's
+//! wavenumbers. A family of rows takes any share of the remainder given as a
+//! function of |k| ([`Share`]): the caller splits the short waves over two boxes and
+//! a banded depth's part below its bands ([`super::layered_kernels`]). The long
+//! waves ([`LongWaveRow`]) are rows per polar node in the same way.
 //!
 //! The panels grow geometrically (ratio 2 near k = 0, 1.5 beyond): on `[a, rho a]` the
 //! degree-19 interpolant of any `e^{-theta L}` is within `e^{-a L} (rho - 1)^20 (a L /
