@@ -808,24 +808,8 @@ impl LayeredStressKernels {
         self.remainder_from(t, layer, z, carrier, r1, mu, k)
     }
 
-    /// [`Self::remainder`] from a solver already solved at k (one per node of an XZ
-    /// section's rows, [`RowWork`]).
-    #[allow(clippy::too_many_arguments)]
-    fn solved_remainder(
-        &self,
-        solved: &LayeredSolver,
-        layer: usize,
-        z: f64,
-        carrier: (f64, f64, f64),
-        r1: [f64; 4],
-        mu: f64,
-        k: f64,
-    ) -> [f64; 4] {
-        let t = solved.solved_response(layer, z).stress;
-        self.remainder_from(t, layer, z, carrier, r1, mu, k)
-    }
-
-    /// [`Self::remainder`] of the transfer `t` at k.
+    /// [`Self::remainder`] of the transfer `t` at k (an XZ section's rows read `t` from
+    /// a solver solved once per node, [`RowWork`]).
     #[allow(clippy::too_many_arguments)]
     fn remainder_from(
         &self,
@@ -1098,7 +1082,8 @@ impl StressKernels for LayeredStressKernels {
                         .iter()
                         .zip(solved)
                         .map(|(&theta, solved)| {
-                            self.solved_remainder(solved, layer, z, carrier, r1, lambda, theta / h)
+                            let t = solved.solved_response(layer, z).stress;
+                            self.remainder_from(t, layer, z, carrier, r1, lambda, theta / h)
                         })
                         .collect()
                 };
