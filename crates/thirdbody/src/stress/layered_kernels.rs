@@ -551,22 +551,22 @@ impl LayeredStressKernels {
         let thickness = self.stack.thickness();
         match row {
             Some((source, row)) if row_lattice(lattice, source) => {
-                match source.kept::<RowWork>().and_then(|w| w.remainder_at(z)) {
-                    Some(rows) => {
-                        add_to_row(row, rows);
-                        return;
-                    }
-                    _ => remainder_on_row(
-                        lattice,
-                        lambda,
-                        thickness,
-                        k1,
-                        &remainder,
-                        short_waves,
-                        source,
-                        row,
-                    ),
+                if let Some(rows) = source.kept::<RowWork>().and_then(|w| w.remainder_at(z)) {
+                    add_to_row(row, rows);
+                    return;
                 }
+                // A depth the rows do not serve (deeper than they are graded for, or a
+                // decay length within 0.1 % of the alias threshold): per depth.
+                remainder_on_row(
+                    lattice,
+                    lambda,
+                    thickness,
+                    k1,
+                    &remainder,
+                    short_waves,
+                    source,
+                    row,
+                );
                 let basis = &mut table.scratch.long_wave;
                 long_wave_on_row(lattice, k1, &remainder, basis, source, row);
             }
