@@ -733,3 +733,65 @@ fn interfaces_carry_tractions_and_strains() {
         worst[2]
     );
 }
+
+/// Test 5: a stack of isotropic layers is symmetric about the plane y = 0, so its
+/// kernels have Love's parity in y (declared by `parity_in_y`; XZ sections tabulate
+/// only the offsets `|y|`): `K(x, -y) = +-K(x, y)` to 1e-13 of the peak (rounding
+/// in the remainder's lattice sums), under the thick-coating limit, the sub-cell
+/// split and the full expansion.
+#[test]
+fn kernels_have_loves_parity_in_y() {
+    let love = HomogeneousStressKernels {
+        material: elastic(1.0, 0.3),
+    };
+    let stacks = [
+        (
+            Stack {
+                layers: vec![ply(elastic(3.0, 0.3), 1e6)],
+                base: Base::HalfSpace(elastic(1.0, 0.3)),
+            },
+            vec![0.0, 2.0],
+        ),
+        (
+            Stack {
+                layers: vec![ply(elastic(30.0, 0.25), 0.1), ply(elastic(1.0, 0.3), 1.0)],
+                base: Base::HalfSpace(elastic(0.2, 0.4)),
+            },
+            vec![0.0, 0.05, 0.3, 1.1, 4.0],
+        ),
+        (
+            Stack {
+                layers: vec![ply(elastic(1.0 / 30.0, 0.45), 3.0)],
+                base: Base::Rigid(BaseContact::Bonded),
+            },
+            vec![0.0, 1.0, 3.0],
+        ),
+    ];
+    let lattice = centred(24, 1.0);
+    let mut worst_all = 0.0f64;
+    for (stack, depths) in &stacks {
+        let k = kernels(stack, Side::Above);
+        let even = k.parity_in_y().expect("a stack declares its parity");
+        assert_eq!(Some(even), love.parity_in_y());
+        for &z in depths {
+            let t = fill(&k, z, &lattice);
+            let p = peak(&t);
+            let mut worst = 0.0f64;
+            for y in 1..=24 {
+                for x in -24..=24 {
+                    let (a, b) = (at(&t, x, y), at(&t, x, -y));
+                    for c in 0..6 {
+                        let d = if even[c] { a[c] - b[c] } else { a[c] + b[c] };
+                        worst = worst.max(d.abs() / p);
+                    }
+                }
+            }
+            eprintln!(
+                "z {z} ({:?}): {worst:.1e} of the peak",
+                k.method_at(z, &lattice)
+            );
+            worst_all = worst_all.max(worst);
+        }
+    }
+    assert!(worst_all < 1e-13, "asymmetry {worst_all:.1e} of the peak");
+}

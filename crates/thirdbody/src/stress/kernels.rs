@@ -132,7 +132,7 @@ fn corner_primitives(u: f64, v: f64, z: f64, nu: f64) -> [f64; COMPONENTS] {
 /// Parity of each component's primitive under `u -> -u` and `v -> -v`
 /// (true = odd).
 const ODD_IN_U: [bool; COMPONENTS] = [true, true, true, false, false, true];
-const ODD_IN_V: [bool; COMPONENTS] = [true, true, true, false, true, false];
+pub(crate) const ODD_IN_V: [bool; COMPONENTS] = [true, true, true, false, true, false];
 
 /// The stresses `[sigma_x, sigma_y, sigma_z, tau_xy, tau_xz, tau_yz]` at `(x, y, z)`,
 /// `z >= 0`, per unit pressure on `|x| <= a, |y| <= b` (Love 1929), tension positive.
@@ -220,9 +220,11 @@ pub trait StressKernels: Sync {
     fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable);
 
     /// For each component, whether its kernel is even (`true`) or odd (`false`) in
-    /// y exactly, i.e. `K(x, -y) = +-K(x, y)` to the last bit of [`Self::fill`];
+    /// y, i.e. `K(x, -y) = +-K(x, y)`, to rounding in [`Self::fill`] (Love's kernels
+    /// to the last bit, a layered body's to about 1e-16 of the table's peak);
     /// `None` (the default) if no such symmetry may be assumed. Sections use it to
-    /// share work between source rows at opposite y offsets.
+    /// share work between source rows at opposite y offsets: an XZ section then
+    /// tabulates the kernels only at offsets `|y|`.
     fn parity_in_y(&self) -> Option<[bool; COMPONENTS]> {
         None
     }

@@ -931,6 +931,14 @@ impl LayeredStressKernels {
 }
 
 impl StressKernels for LayeredStressKernels {
+    /// A stack of isotropic layers is symmetric about every vertical plane: its
+    /// kernels have Love's parity in y. Love's part and the carriers are evaluated
+    /// folded (exactly symmetric); the remainder's lattice sums are symmetric to
+    /// rounding.
+    fn parity_in_y(&self) -> Option<[bool; COMPONENTS]> {
+        Some(super::kernels::ODD_IN_V)
+    }
+
     fn fill(&self, z: f64, lattice: &OffsetLattice, table: &mut InfluenceTable) {
         self.fill_with(z, lattice, table, self.method_at(z, lattice));
     }
