@@ -177,6 +177,19 @@ fn wide_window_xz_section_is_the_direct_sum_of_the_table() {
     check_on(grid, &body, &[0.0, 0.05, 0.2, 0.9, 1.6]);
 }
 
+/// Top layers thinner than a cell (the sub-cell split at the surface and in the
+/// layer: a stiff one a third of a cell thick, a soft one a fiftieth), on the wide
+/// window: the split's capped and tapered top band on small boxes, the rest of its
+/// remainder from the rows.
+#[test]
+fn sub_cell_layers_xz_section_is_the_direct_sum_of_the_table() {
+    let grid = Grid::centred(72, 40, 0.05, [0.0, 0.0]).unwrap();
+    for (young, h1) in [(30.0, 0.05 / 3.0), (0.1, 0.001)] {
+        let body = Body::coated(elastic(young), h1, elastic(1.0));
+        check_on(grid.clone(), &body, &[0.0, 0.5 * h1, 0.05, 0.9]);
+    }
+}
+
 /// A depth's stresses do not depend on the other depths of its section: the rows
 /// are built from the lattice, the stack and the pressure only (the Python package
 /// computes a section a few depths at a time and must equal the CLI's).

@@ -513,20 +513,14 @@ impl LayeredStressKernels {
             stack: &self.stack,
             eval: &eval,
         };
-        if method == StressMethod::SubCell {
-            let top = Pass::Short {
-                taper: true,
-                edge: z > 0.0,
-            };
-            self.add_banded_remainder(lattice, lambda, top, &remainder, table);
-            return;
-        }
         let k1 = split_wavenumber(lattice);
-        if needs_bands(lattice, lambda) {
+        let sub_cell = method == StressMethod::SubCell;
+        if sub_cell || needs_bands(lattice, lambda) {
             // The short waves need aliases on a box of `REACH / k1` cells: in bands.
+            // The sub-cell split caps and tapers the top band's aliases.
             let top = Pass::Short {
-                taper: false,
-                edge: false,
+                taper: sub_cell,
+                edge: sub_cell && z > 0.0,
             };
             let work = row
                 .as_ref()
@@ -1072,12 +1066,17 @@ impl StressKernels for LayeredStressKernels {
         let plans: Vec<DepthRows> = zs
             .par_iter()
             .filter_map(|&z| {
-                if self.method_at(z, lattice) != StressMethod::Full || z > deepest {
+                let method = self.method_at(z, lattice);
+                let sub_cell = method == StressMethod::SubCell;
+                if !(sub_cell || method == StressMethod::Full) || z > deepest {
                     return None;
                 }
                 let layer = self.layer(z);
                 let lambda = self.decay_length(layer, z);
-                let banded = needs_bands(lattice, lambda);
+                let banded = sub_cell || needs_bands(lattice, lambda);
+                // The sub-cell split's slope carrier is at least a cell deep (as in
+                // `fill_parts`), and so is its remainder.
+                let mu = if sub_cell { lambda.max(h) } else { lambda };
                 let mut theta_cut = ALIAS_DECAY * h / lambda;
                 if banded {
                     theta_cut = theta_cut.min(BAND_EDGE * kxh?);
@@ -1091,7 +1090,7 @@ impl StressKernels for LayeredStressKernels {
                         .zip(solved)
                         .map(|(&theta, solved)| {
                             let t = solved.solved_response(layer, z).stress;
-                            self.remainder_from(t, layer, z, carrier, r1, lambda, theta / h)
+                            self.remainder_from(t, layer, z, carrier, r1, mu, theta / h)
                         })
                         .collect()
                 };
@@ -1284,9 +1283,13 @@ fn remainder_on_lattice(
                 if !spectrum.column_reached(jx) {
                     return None;
                 }
-                for jy in 0..ay.len {
-                    for (dst, a) in column.iter_mut().zip(spectrum.at(jx, jy)) {
+                for jy in 0..=ay.len / 2 {
+                    let (at, partner) = spectrum.at_pair(jx, jy);
+                    for (dst, a) in column.iter_mut().zip(at) {
                         dst[jy] = a;
+                    }
+                    for (dst, a) in column.iter_mut().zip(partner.into_iter().flatten()) {
+                        dst[ay.len - jy] = a;
                     }
                 }
                 Some(std::array::from_fn(|c| {
@@ -1366,9 +1369,14 @@ fn remainder_on_row(
                 return sum;
             }
             let column = pressure.column(jx);
-            for (jy, &p) in column.iter().enumerate() {
-                for (s, a) in sum.iter_mut().zip(spectrum.at(jx, jy)) {
-                    *s += a * p;
+            let len = column.len();
+            for jy in 0..=len / 2 {
+                let (at, partner) = spectrum.at_pair(jx, jy);
+                for (s, a) in sum.iter_mut().zip(at) {
+                    *s += a * column[jy];
+                }
+                for (s, a) in sum.iter_mut().zip(partner.into_iter().flatten()) {
+                    *s += a * column[len - jy];
                 }
             }
             sum
@@ -1772,12 +1780,58 @@ impl BoxSpectrum {
         self.tx[jx].theta.iter().any(|t| t.abs() <= self.theta_cut)
     }
 
-    /// The six components' coefficient at base wavenumber `(jx, jy)`.
-    #[inline]
-    fn at(&self, jx: usize, jy: usize) -> [Complex<f64>; COMPONENTS] {
+    /// The six components' coefficients at base wavenumbers `(jx, jy)` and `(jx, len -
+    /// jy)` (the second is `None` where it is the first: `jy` 0 or `len / 2`). The two
+    /// rows' alias terms are at `(kx, ky)` and `(kx, -ky)`: the same |k| (one radial
+    /// evaluation for both), the same `c`, the opposite `s`, and conjugate phases
+    /// along y.
+    fn at_pair(
+        &self,
+        jx: usize,
+        jy: usize,
+    ) -> (
+        [Complex<f64>; COMPONENTS],
+        Option<[Complex<f64>; COMPONENTS]>,
+    ) {
         let (x, y) = (&self.tx[jx], &self.ty[jy]);
-        let theta_cut = self.theta_cut;
+        let paired = jy != 0 && 2 * jy != self.ay.len;
         let mut acc = [Complex::<f64>::default(); COMPONENTS];
+        let mut partner = [Complex::<f64>::default(); COMPONENTS];
+        // The six real factors of one alias term (`xixi c^2 + etaeta s^2`, `xixi s^2 +
+        // etaeta c^2`, `zz`, `(xixi - etaeta) c s`, `xiz c`, `xiz s`; the shears times
+        // i), added with weight w to the row and with w' to its partner (s -> -s).
+        let mut add = |[xixi, etaeta, zz, xiz]: [f64; 4],
+                       c: f64,
+                       s: f64,
+                       wx: Complex<f64>,
+                       wy: Complex<f64>| {
+            let f = [
+                xixi * c * c + etaeta * s * s,
+                xixi * s * s + etaeta * c * c,
+                zz,
+                (xixi - etaeta) * c * s,
+                xiz * c,
+                xiz * s,
+            ];
+            let w = wx * wy;
+            let iw = Complex::new(-w.im, w.re);
+            for q in 0..3 {
+                acc[q] += w * f[q];
+            }
+            acc[3] += w * f[3];
+            acc[4] += iw * f[4];
+            acc[5] += iw * f[5];
+            if paired {
+                let w = wx * wy.conj();
+                let iw = Complex::new(-w.im, w.re);
+                for q in 0..3 {
+                    partner[q] += w * f[q];
+                }
+                partner[3] -= w * f[3];
+                partner[4] += iw * f[4];
+                partner[5] -= iw * f[5];
+            }
+        };
         if let Some(squares) = &self.squares {
             let n_max = squares.len() as i64 - 1;
             for (&iy, &wy) in y.index.iter().zip(&y.weight) {
@@ -1790,55 +1844,44 @@ impl BoxSpectrum {
                     if n > n_max {
                         continue;
                     }
-                    let [xixi, etaeta, zz, xiz] = squares[n as usize];
                     let (c, s) = if n > 0 {
                         let radius = (n as f64).sqrt();
                         (ix as f64 / radius, iy as f64 / radius)
                     } else {
                         (1.0, 0.0)
                     };
-                    let w = wx * wy;
-                    let shear = Complex::new(0.0, xiz) * w;
-                    acc[0] += w * (xixi * c * c + etaeta * s * s);
-                    acc[1] += w * (xixi * s * s + etaeta * c * c);
-                    acc[2] += w * zz;
-                    acc[3] += w * ((xixi - etaeta) * c * s);
-                    acc[4] += shear * c;
-                    acc[5] += shear * s;
+                    add(squares[n as usize], c, s, wx, wy);
                 }
             }
-            return acc.map(|a| a * self.norm);
-        }
-        for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
-            if ty_.abs() > theta_cut {
-                continue;
-            }
-            for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
-                // |k| h; the wave numbers are bounded (a few times 2 pi),
-                // so hypot's overflow guard is not needed.
-                let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
-                if theta > theta_cut {
+        } else {
+            let theta_cut = self.theta_cut;
+            for (&ty_, &wy) in y.theta.iter().zip(&y.weight) {
+                if ty_.abs() > theta_cut {
                     continue;
                 }
-                let high_pass = self.high_pass(theta);
-                let r = self.radial_table.eval(theta).map(|v| v * high_pass);
-                let (c, s) = if theta > 0.0 {
-                    (tx_ / theta, ty_ / theta)
-                } else {
-                    (1.0, 0.0)
-                };
-                let w = wx * wy;
-                let (xixi, etaeta, zz, xiz) = (r[0], r[1], r[2], r[3]);
-                let shear = Complex::new(0.0, xiz) * w;
-                acc[0] += w * (xixi * c * c + etaeta * s * s);
-                acc[1] += w * (xixi * s * s + etaeta * c * c);
-                acc[2] += w * zz;
-                acc[3] += w * ((xixi - etaeta) * c * s);
-                acc[4] += shear * c;
-                acc[5] += shear * s;
+                for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
+                    // |k| h; the wave numbers are bounded (a few times 2 pi),
+                    // so hypot's overflow guard is not needed.
+                    let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
+                    if theta > theta_cut {
+                        continue;
+                    }
+                    let high_pass = self.high_pass(theta);
+                    let r = self.radial_table.eval(theta).map(|v| v * high_pass);
+                    let (c, s) = if theta > 0.0 {
+                        (tx_ / theta, ty_ / theta)
+                    } else {
+                        (1.0, 0.0)
+                    };
+                    add(r, c, s, wx, wy);
+                }
             }
         }
-        acc.map(|a| a * self.norm)
+        let norm = self.norm;
+        (
+            acc.map(|a| a * norm),
+            paired.then(|| partner.map(|a| a * norm)),
+        )
     }
 }
 
