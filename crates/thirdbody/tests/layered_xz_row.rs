@@ -186,7 +186,7 @@ fn sub_cell_layers_xz_section_is_the_direct_sum_of_the_table() {
     let grid = Grid::centred(72, 40, 0.05, [0.0, 0.0]).unwrap();
     for (young, h1) in [(30.0, 0.05 / 3.0), (0.1, 0.001)] {
         let body = Body::coated(elastic(young), h1, elastic(1.0));
-        check_on(grid.clone(), &body, &[0.0, 0.5 * h1, 0.05, 0.9]);
+        check_on(grid, &body, &[0.0, 0.5 * h1, 0.05, 0.9]);
     }
 }
 
