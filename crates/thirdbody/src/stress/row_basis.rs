@@ -24,6 +24,8 @@
 
 use std::f64::consts::PI;
 
+use ndarray::linalg::general_mat_mul;
+use ndarray::{Array2, ArrayView2, ShapeBuilder};
 use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
@@ -463,34 +465,69 @@ impl LongWaveRow {
 }
 
 /// The rows of many depths, `jobs[d] = (rows per node, transfer per node)`,
-/// into `rows[d]`: node by node, so that a node's angular rows are read once for a
-/// block of depths (the depths' outputs stay in cache; read per depth, the rows of
-/// all nodes streamed from memory once per depth). Blocks of depths run in parallel.
+/// into `rows[d]`, as matrix products: depths sharing the same rows (`psi`) form,
+/// per component, a matrix of coefficients (depth x node) that multiplies the nodes'
+/// angular row of that component (node x column). The products go through
+/// `ndarray`'s `general_mat_mul` (`matrixmultiply`: cache-blocked kernels with the
+/// processor's vector instructions, chosen at run time).
 fn add_rows_many(jobs: &[(&[f64], &[[f64; 4]])], nx: usize, rows: &mut [[Vec<f64>; COMPONENTS]]) {
-    // Eight depths' outputs over 64 columns (24 kB) stay in the first-level cache
-    // while the nodes' rows stream past.
-    const BLOCK: usize = 16;
-    const COLUMNS: usize = 256;
-    rows.par_chunks_mut(BLOCK)
-        .zip(jobs.par_chunks(BLOCK))
-        .for_each(|(rows, jobs)| {
-            let nodes = jobs.iter().map(|(_, v)| v.len()).max().unwrap_or(0);
-            for first in (0..nx).step_by(COLUMNS) {
-                let span = first..(first + COLUMNS).min(nx);
-                for b in 0..nodes {
-                    for (row, &(psi, values)) in rows.iter_mut().zip(jobs) {
-                        if let Some(&value) = values.get(b) {
-                            let psi = &psi[b * ANGULAR * nx..][..ANGULAR * nx];
-                            add_node(psi, value, nx, span.clone(), row);
-                        }
+    // Groups of depths by their rows (the main family's or the band family's).
+    let mut groups: Vec<(&[f64], Vec<usize>)> = Vec::new();
+    for (d, &(psi, _)) in jobs.iter().enumerate() {
+        match groups.iter_mut().find(|(p, _)| std::ptr::eq(*p, psi)) {
+            Some((_, members)) => members.push(d),
+            None => groups.push((psi, vec![d])),
+        }
+    }
+    for (psi, members) in groups {
+        let nodes = members.iter().map(|&d| jobs[d].1.len()).max().unwrap_or(0);
+        if nodes == 0 {
+            continue;
+        }
+        // Component c (of `[A, B, sigma_z, tau_xy, tau_xz, tau_yz]`, [`finish_rows`])
+        // takes angular row `ANGULAR_OF[c]` (`c^2 + s^2, c^2 - s^2, c s, i c, i s`)
+        // times `coefficient(c, r)`: `sigma_x = r0 c^2 + r1 s^2 = A + B` and `sigma_y =
+        // A - B` with `A = (r0 + r1) / 2 (c^2 + s^2)`, `B = (r0 - r1) / 2 (c^2 - s^2)`.
+        const ANGULAR_OF: [usize; COMPONENTS] = [0, 1, 0, 2, 3, 4];
+        let coefficient = |c: usize, [r0, r1, r2, r3]: [f64; 4]| match c {
+            0 => 0.5 * (r0 + r1),
+            1 => 0.5 * (r0 - r1),
+            2 => r2,
+            3 => r0 - r1,
+            _ => r3,
+        };
+        let products: Vec<Array2<f64>> = (0..COMPONENTS)
+            .into_par_iter()
+            .map(|c| {
+                let mut coefficients = Array2::<f64>::zeros((members.len(), nodes));
+                for (i, &d) in members.iter().enumerate() {
+                    for (b, &value) in jobs[d].1.iter().enumerate() {
+                        coefficients[[i, b]] = coefficient(c, value);
                     }
                 }
+                let angular = ArrayView2::from_shape(
+                    (nodes, nx).strides((ANGULAR * nx, 1)),
+                    &psi[ANGULAR_OF[c] * nx..],
+                )
+                .expect("each node holds its angular rows");
+                let mut out = Array2::<f64>::zeros((members.len(), nx));
+                general_mat_mul(1.0, &coefficients, &angular, 0.0, &mut out);
+                out
+            })
+            .collect();
+        for (c, product) in products.iter().enumerate() {
+            for (i, &d) in members.iter().enumerate() {
+                for (o, v) in rows[d][c].iter_mut().zip(product.row(i)) {
+                    *o += v;
+                }
             }
-        });
+        }
+    }
 }
 
 /// Replaces each node's first two angular rows `c^2, s^2` by their sum and
-/// difference ([`add_node`] then takes six products per column instead of nine).
+/// difference ([`add_rows_many`] then takes six products per node and column instead
+/// of nine).
 fn to_sum_and_difference(psi: &mut [f64], nx: usize) {
     for node in psi.chunks_exact_mut(ANGULAR * nx) {
         let (cc, rest) = node.split_at_mut(nx);
@@ -502,7 +539,7 @@ fn to_sum_and_difference(psi: &mut [f64], nx: usize) {
     }
 }
 
-/// Turns rows summed by [`add_node`] (`[A, B, sigma_z, tau_xy, tau_xz, tau_yz]`, A and B
+/// Turns rows summed by [`add_rows_many`] (`[A, B, sigma_z, tau_xy, tau_xz, tau_yz]`, A and B
 /// the halves of the sum and difference of `sigma_x` and `sigma_y`) into the six
 /// stresses.
 pub(super) fn finish_rows(row: &mut [Vec<f64>; COMPONENTS]) {
@@ -511,48 +548,6 @@ pub(super) fn finish_rows(row: &mut [Vec<f64>; COMPONENTS]) {
         let (sum, difference) = (*x, *y);
         *x = sum + difference;
         *y = sum - difference;
-    }
-}
-
-/// `row +=` the six products of the transfer `[r0, r1, r2, r3]` at one node with its
-/// angular rows `psi` (`c^2 + s^2, c^2 - s^2, c s, i c, i s`, each `nx` long), on
-/// the columns `span`, into `[A, B, sigma_z, tau_xy, tau_xz, tau_yz]` ([`finish_rows`]):
-/// `sigma_x = r0 c^2 + r1 s^2 = A + B`, `sigma_y = A - B` with `A = (r0 + r1) / 2 (c^2
-/// + s^2)`, `B = (r0 - r1) / 2 (c^2 - s^2)`.
-fn add_node(
-    psi: &[f64],
-    [r0, r1, r2, r3]: [f64; 4],
-    nx: usize,
-    span: std::ops::Range<usize>,
-    row: &mut [Vec<f64>; COMPONENTS],
-) {
-    if r0 == 0.0 && r1 == 0.0 && r2 == 0.0 && r3 == 0.0 {
-        return;
-    }
-    let part = |a: usize| &psi[a * nx..][span.clone()];
-    let (sum, difference, cs, c, s) = (part(0), part(1), part(2), part(3), part(4));
-    let [o0, o1, o2, o3, o4, o5] = row;
-    let (half_sum, half_difference, d) = (0.5 * (r0 + r1), 0.5 * (r0 - r1), r0 - r1);
-    for (((((o0, o1), o2), o3), (&sum, &difference)), &cs) in o0[span.clone()]
-        .iter_mut()
-        .zip(&mut o1[span.clone()])
-        .zip(&mut o2[span.clone()])
-        .zip(&mut o3[span.clone()])
-        .zip(sum.iter().zip(difference))
-        .zip(cs)
-    {
-        *o0 += half_sum * sum;
-        *o1 += half_difference * difference;
-        *o2 += r2 * sum;
-        *o3 += d * cs;
-    }
-    for ((o4, o5), (&c, &s)) in o4[span.clone()]
-        .iter_mut()
-        .zip(&mut o5[span])
-        .zip(c.iter().zip(s))
-    {
-        *o4 += r3 * c;
-        *o5 += r3 * s;
     }
 }
 
