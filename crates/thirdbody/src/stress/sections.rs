@@ -228,30 +228,39 @@ pub(crate) fn xz_plane(
 
 /// `f(state, item)` for every item, in parallel, in order: one state from `init`
 /// per thread, kept for all of its items (a kernel table keeps work between the
-/// depths of one lattice), the items interleaved between the threads (neighbouring
-/// depths cost alike). Rayon's `map_init` makes a state per split job, several per
-/// thread.
+/// depths of one lattice). Each thread takes the next item not yet taken, so that an
+/// item far costlier than the others (a depth whose remainder needs many aliases)
+/// does not leave the other threads idle at the end. Rayon's `map_init` makes a
+/// state per split job, several per thread.
 pub(super) fn per_thread_map<T: Sync, S, R: Send>(
     items: &[T],
     init: impl Fn() -> S + Sync,
     f: impl Fn(&mut S, &T) -> R + Sync,
 ) -> Vec<R> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
     let tasks = rayon::current_num_threads().clamp(1, items.len().max(1));
-    let parts: Vec<Vec<R>> = (0..tasks)
+    let next = AtomicUsize::new(0);
+    let parts: Vec<Vec<(usize, R)>> = (0..tasks)
         .into_par_iter()
-        .map(|t| {
+        .map(|_| {
             let mut state = init();
-            items
-                .iter()
-                .skip(t)
-                .step_by(tasks)
-                .map(|item| f(&mut state, item))
-                .collect()
+            let mut done = Vec::new();
+            loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(item) = items.get(i) else {
+                    break done;
+                };
+                done.push((i, f(&mut state, item)));
+            }
         })
         .collect();
-    let mut parts: Vec<std::vec::IntoIter<R>> = parts.into_iter().map(Vec::into_iter).collect();
-    (0..items.len())
-        .map(|i| parts[i % tasks].next().expect("one result per item"))
+    let mut slots: Vec<Option<R>> = std::iter::repeat_with(|| None).take(items.len()).collect();
+    for (i, r) in parts.into_iter().flatten() {
+        slots[i] = Some(r);
+    }
+    slots
+        .into_iter()
+        .map(|r| r.expect("one result per item"))
         .collect()
 }
 
