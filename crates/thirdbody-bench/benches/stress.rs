@@ -1,7 +1,7 @@
 //! Subsurface-stress speed: the XZ section of 256 points
 //! along x by 128 depths under a 256 x 256 Hertz pressure field, and a
-//! 128 x 128 x 64 block; the same XZ section of coated bodies and of stacks of
-//! three and five layers.
+//! 128 x 128 x 64 block; the same XZ section of coated bodies (a/1000 to 1000 a
+//! thick) and of stacks of three and five layers.
 
 use std::hint::black_box;
 
@@ -74,6 +74,26 @@ fn bench(c: &mut Criterion) {
         };
         group.bench_function(format!("coated_{name}_interface_256x256"), |b| {
             b.iter(|| black_box(stresses(&grid, &p, &coated, &interface).unwrap()))
+        });
+    }
+
+    // The ends of the range of coatings: a/1000 thick (1/16 of a cell: the sub-cell
+    // split at the surface) and 1000 a thick (the coating's own half-space), E1/E2 = 3,
+    // the XZ section as above.
+    for (name, h1) in [("micro", 1e-3), ("kilo", 1e3)] {
+        let coated = Body::coated(
+            Elastic {
+                young: 3.0,
+                poisson: 0.3,
+            },
+            h1,
+            Elastic {
+                young: 1.0,
+                poisson: 0.3,
+            },
+        );
+        group.bench_function(format!("coated_{name}_xz_256x128_from_256x256"), |b| {
+            b.iter(|| black_box(stresses(&grid, &p, &coated, &xz).unwrap()))
         });
     }
 
