@@ -233,8 +233,8 @@ pub trait StressKernels: Sync {
     /// fills `table` as [`Self::fill`] does, or with only a part of the kernels, and
     /// then adds to `row` (`source.nx` values per component) the stresses along the
     /// row due to the rest, summed otherwise (a layered body sums its remainder's
-    /// short waves against the pressure's spectrum). The default puts everything in
-    /// the table.
+    /// short waves against the pressure's spectrum), except the part that
+    /// [`Self::add_prepared_row`] adds. The default puts everything in the table.
     fn fill_row(
         &self,
         z: f64,
@@ -247,11 +247,25 @@ pub trait StressKernels: Sync {
         self.fill(z, lattice, table);
     }
 
-    /// Work that the [`StressKernels::fill_row`]s of a section's `depths` share,
-    /// built once before them and kept in `source` (`RowSource::keep`). The
-    /// default keeps nothing.
-    fn prepare_row(&self, lattice: &OffsetLattice, source: &mut RowSource, depths: &[f64]) {
+    /// Work that the rows of a section's `depths` share, built once, while the
+    /// depths' [`Self::fill_row`]s run (which must therefore know, from `lattice`,
+    /// `source` and the depth alone, what it will hold). It must not depend on which
+    /// depths are asked for beyond the set it serves: a depth's stresses are the same
+    /// whichever other depths share its section. The default builds nothing.
+    fn prepare_row(
+        &self,
+        lattice: &OffsetLattice,
+        source: &RowSource,
+        depths: &[f64],
+    ) -> Option<PreparedRow> {
         let _ = (lattice, source, depths);
+        None
+    }
+
+    /// Adds to `row` (after [`Self::fill_row`] and the table's sum) the part of depth
+    /// z's stresses along the row that `prepared` ([`Self::prepare_row`]) holds.
+    fn add_prepared_row(&self, z: f64, prepared: &PreparedRow, row: &mut [Vec<f64>; COMPONENTS]) {
+        let _ = (z, prepared, row);
     }
 
     /// Plane strain (a line contact): fills `out[c][d + count - 1]`, `-(count - 1)
@@ -275,6 +289,10 @@ pub trait StressKernels: Sync {
     }
 }
 
+/// Work a body's [`StressKernels::prepare_row`] builds once for the depths of an XZ
+/// section, handed back to its [`StressKernels::add_prepared_row`].
+pub type PreparedRow = Box<dyn std::any::Any + Send + Sync>;
+
 /// The pressure on a grid of square cells and one row of outputs along x (at the
 /// cell centres, at a y offset `offset` cells from the centre of source row 0), for
 /// [`StressKernels::fill_row`]: the section owns it and shares it between the
@@ -291,8 +309,6 @@ pub struct RowSource<'a> {
     /// lattice and split wavenumber.
     #[allow(clippy::type_complexity)]
     moments: std::sync::Mutex<Vec<(OffsetLattice, f64, std::sync::Arc<Vec<f64>>)>>,
-    /// What a body's [`StressKernels::prepare_row`] built for all the depths.
-    prepared: Option<Box<dyn std::any::Any + Send + Sync>>,
 }
 
 impl<'a> RowSource<'a> {
@@ -307,19 +323,7 @@ impl<'a> RowSource<'a> {
             offset,
             spectra: std::sync::Mutex::new(Vec::new()),
             moments: std::sync::Mutex::new(Vec::new()),
-            prepared: None,
         }
-    }
-
-    /// Keeps the work a body's [`StressKernels::prepare_row`] shares between the
-    /// depths.
-    pub(crate) fn keep(&mut self, work: impl std::any::Any + Send + Sync) {
-        self.prepared = Some(Box::new(work));
-    }
-
-    /// The work kept by [`Self::keep`], if it is a `T`.
-    pub(crate) fn kept<T: 'static>(&self) -> Option<&T> {
-        self.prepared.as_ref().and_then(|w| w.downcast_ref::<T>())
     }
 
     /// The pressure, `[l * nx + k]`.

@@ -113,7 +113,8 @@ use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
 
 use super::kernels::{
-    HomogeneousStressKernels, InfluenceTable, OffsetLattice, RowSource, StressKernels, COMPONENTS,
+    HomogeneousStressKernels, InfluenceTable, OffsetLattice, PreparedRow, RowSource, StressKernels,
+    COMPONENTS,
 };
 use super::long_wave::{
     long_wave_kernels, long_wave_on_row, long_wave_share, short_wave_share, Radial, BAND_EDGE,
@@ -515,6 +516,14 @@ impl LayeredStressKernels {
         };
         let k1 = split_wavenumber(lattice);
         let sub_cell = method == StressMethod::SubCell;
+        // In an XZ section, whether the rows built once for the section
+        // ([`StressKernels::prepare_row`]) hold this depth's remainder (below the
+        // band split kx, for a depth summed in bands); they are added to the row
+        // afterwards ([`StressKernels::add_prepared_row`]).
+        let from_rows = row
+            .as_ref()
+            .is_some_and(|(source, _)| row_lattice(lattice, source))
+            && self.row_plan(lattice, z).is_some();
         if sub_cell || needs_bands(lattice, lambda) {
             // The short waves need aliases on a box of `REACH / k1` cells: in bands.
             // The sub-cell split caps and tapers the top band's aliases.
@@ -522,20 +531,16 @@ impl LayeredStressKernels {
                 taper: sub_cell,
                 edge: sub_cell && z > 0.0,
             };
-            let work = row
-                .as_ref()
-                .filter(|(source, _)| row_lattice(lattice, source))
-                .and_then(|(source, _)| source.kept::<RowWork>());
-            let rows = work.and_then(|w| Some((w.band_split?, w.remainder_at(z)?)));
-            match (rows, row) {
-                (Some((kxh, rows)), Some((_, row))) => {
-                    // Bands down to kx on small boxes, in the table; below kx from the
-                    // rows.
-                    self.add_bands(lattice, lambda, top, &remainder, table, kxh / lattice.cell);
-                    add_to_row(row, rows);
+            match self.row_parameters(lattice).kxh {
+                // Bands down to kx on small boxes, in the table; below kx from the rows.
+                Some(kxh) if from_rows => {
+                    self.add_bands(lattice, lambda, top, &remainder, table, kxh / lattice.cell)
                 }
                 _ => self.add_banded_remainder(lattice, lambda, top, &remainder, table),
             }
+            return;
+        }
+        if from_rows {
             return;
         }
         let short_waves = Pass::Short {
@@ -545,10 +550,6 @@ impl LayeredStressKernels {
         let thickness = self.stack.thickness();
         match row {
             Some((source, row)) if row_lattice(lattice, source) => {
-                if let Some(rows) = source.kept::<RowWork>().and_then(|w| w.remainder_at(z)) {
-                    add_to_row(row, rows);
-                    return;
-                }
                 // A depth the rows do not serve (deeper than they are graded for, or a
                 // decay length within 0.1 % of the alias threshold): per depth.
                 remainder_on_row(
@@ -561,8 +562,15 @@ impl LayeredStressKernels {
                     source,
                     row,
                 );
+                // The long waves' moments take every source row at its signed offset
+                // (the section's lattice may hold only the offsets |y|).
                 let basis = &mut table.scratch.long_wave;
-                long_wave_on_row(lattice, k1, &remainder, basis, source, row);
+                let signed = OffsetLattice {
+                    y_first: source.offset - (source.rows() as f64 - 1.0),
+                    rows: source.rows(),
+                    ..*lattice
+                };
+                long_wave_on_row(&signed, k1, &remainder, basis, source, row);
             }
             _ => {
                 let long = long_wave_kernels(lattice, k1, &remainder, &mut table.scratch.long_wave);
@@ -952,38 +960,22 @@ impl StressKernels for LayeredStressKernels {
     /// The remainder of every depth of the section that takes it from rows built once
     /// (`row_basis`: short waves on two periodic boxes, long waves at polar nodes),
     /// kept in `source` for [`StressKernels::fill_row`].
-    fn prepare_row(&self, lattice: &OffsetLattice, source: &mut RowSource, depths: &[f64]) {
+    fn prepare_row(
+        &self,
+        lattice: &OffsetLattice,
+        source: &RowSource,
+        depths: &[f64],
+    ) -> Option<PreparedRow> {
         if !row_lattice(lattice, source) {
-            return;
+            return None;
         }
-        // Everything below depends on the lattice, the stack and the pressure, not on
-        // the depths asked for: a depth's stresses are the same whichever other
-        // depths share its section (the Python package computes a section a few
-        // depths at a time). The decay length is at least the top layer's thickness
-        // (`2 h1 - z` in it, z below it), so the rows reach `ALIAS_DECAY / h1` (below
-        // pi: deeper depths with shorter decay lengths are summed in bands), and the
-        // band family exists when some depth can be banded (a top layer thinner than
-        // the alias threshold).
         let h = lattice.cell;
-        let k1h = split_wavenumber(lattice) * h;
-        let h1 = self.top_thickness();
-        let banded_possible = needs_bands(lattice, h1);
-        let kxh = banded_possible
-            .then(|| {
-                let mut kxh = SUB_CELL_SPLIT;
-                while BAND_EDGE * kxh >= ROW_BAND_TOP {
-                    kxh /= BAND_RATIO;
-                }
-                kxh
-            })
-            .filter(|&kxh| kxh > k1h);
-        let mut theta_top = (ALIAS_DECAY * h / h1).min(ROW_TOP);
-        if let Some(kxh) = kxh {
-            theta_top = theta_top.max(BAND_EDGE * kxh);
-        }
-        // Depths down to `ROW_DEPTHS` times the offsets' reach (the long waves'
-        // panels are graded to the longest length there).
-        let deepest = ROW_DEPTHS * offset_reach(lattice) * h;
+        let RowParameters {
+            k1h,
+            kxh,
+            theta_top,
+            deepest,
+        } = self.row_parameters(lattice);
         // The short waves `1 - chi(k / k1)` in two families: above `k2` (`1 - chi(k /
         // k2)`, and a banded depth's `chi(k / kx) - chi(k / k2)`) on a box only
         // `REACH / k2` wider than the offsets, and the band `chi(k / k2) - chi(k /
@@ -1066,23 +1058,12 @@ impl StressKernels for LayeredStressKernels {
         let plans: Vec<DepthRows> = zs
             .par_iter()
             .filter_map(|&z| {
-                let method = self.method_at(z, lattice);
-                let sub_cell = method == StressMethod::SubCell;
-                if !(sub_cell || method == StressMethod::Full) || z > deepest {
-                    return None;
-                }
+                let RowPlan {
+                    banded,
+                    theta_cut,
+                    mu,
+                } = self.row_plan(lattice, z)?;
                 let layer = self.layer(z);
-                let lambda = self.decay_length(layer, z);
-                let banded = sub_cell || needs_bands(lattice, lambda);
-                // The sub-cell split's slope carrier is at least a cell deep (as in
-                // `fill_parts`), and so is its remainder.
-                let mu = if sub_cell { lambda.max(h) } else { lambda };
-                let mut theta_cut = ALIAS_DECAY * h / lambda;
-                if banded {
-                    theta_cut = theta_cut.min(BAND_EDGE * kxh?);
-                } else if theta_cut > theta_top {
-                    return None;
-                }
                 let (carrier, r1) = self.carriers(layer, z);
                 let values = |thetas: &[f64], solved: &[LayeredSolver]| -> Vec<[f64; 4]> {
                     thetas
@@ -1119,11 +1100,19 @@ impl StressKernels for LayeredStressKernels {
         let jobs: Vec<&[[f64; 4]]> = plans.iter().map(|p| p.long.as_slice()).collect();
         long.add_many(&jobs, &mut remainders);
         remainders.iter_mut().for_each(finish_rows);
-        source.keep(RowWork {
+        Some(Box::new(RowWork {
             depths: plans.iter().map(|p| p.z).collect(),
             remainders,
-            band_split: kxh,
-        });
+        }))
+    }
+
+    fn add_prepared_row(&self, z: f64, prepared: &PreparedRow, row: &mut [Vec<f64>; COMPONENTS]) {
+        if let Some(rows) = prepared
+            .downcast_ref::<RowWork>()
+            .and_then(|work| work.remainder_at(z))
+        {
+            add_to_row(row, rows);
+        }
     }
 
     fn fill_strip(
@@ -1424,8 +1413,6 @@ struct RowWork {
     /// Per depth, the remainder's short waves (or the band family's share, for a
     /// depth summed in bands) and long waves along the row.
     remainders: Vec<[Vec<f64>; COMPONENTS]>,
-    /// The band family's split `kx h`.
-    band_split: Option<f64>,
 }
 
 impl RowWork {
@@ -1471,6 +1458,100 @@ fn carrier_terms_at(
         ep * g0[4],
         ep * g0[5],
     ]
+}
+
+/// What an XZ section's rows ([`StressKernels::prepare_row`]) cover. It depends on
+/// the lattice and the stack only, not on the depths asked for: a depth's stresses
+/// are the same whichever other depths share its section (the Python package
+/// computes a section a few depths at a time).
+struct RowParameters {
+    /// The split `k1 h` between the long and the short waves.
+    k1h: f64,
+    /// The band family's split `kx h`, below which a depth summed in bands takes its
+    /// remainder from the rows (when some depth can be banded: a top layer thinner
+    /// than the alias threshold).
+    kxh: Option<f64>,
+    /// The largest `|k| h` of the short-wave rows. The decay length is at least the
+    /// top layer's thickness (`2 h1 - z` in it, z below it), so the rows reach
+    /// `ALIAS_DECAY / h1` (below pi: deeper depths with shorter decay lengths are
+    /// summed in bands), and at least the band family's edge.
+    theta_top: f64,
+    /// The deepest depth the rows serve: `ROW_DEPTHS` times the offsets' reach (the
+    /// long waves' panels are graded to the longest length there).
+    deepest: f64,
+}
+
+/// How one depth takes its remainder from an XZ section's rows.
+struct RowPlan {
+    /// Summed in bands: the rows hold the part below kx (the band family's share).
+    banded: bool,
+    /// The `|k| h` beyond which the depth's remainder is negligible (or, banded, kx's
+    /// band edge).
+    theta_cut: f64,
+    /// The depth of the slope carrier the remainder is taken against.
+    mu: f64,
+}
+
+impl LayeredStressKernels {
+    fn row_parameters(&self, lattice: &OffsetLattice) -> RowParameters {
+        let h = lattice.cell;
+        let k1h = split_wavenumber(lattice) * h;
+        let h1 = self.top_thickness();
+        let kxh = needs_bands(lattice, h1)
+            .then(|| {
+                let mut kxh = SUB_CELL_SPLIT;
+                while BAND_EDGE * kxh >= ROW_BAND_TOP {
+                    kxh /= BAND_RATIO;
+                }
+                kxh
+            })
+            .filter(|&kxh| kxh > k1h);
+        let mut theta_top = (ALIAS_DECAY * h / h1).min(ROW_TOP);
+        if let Some(kxh) = kxh {
+            theta_top = theta_top.max(BAND_EDGE * kxh);
+        }
+        RowParameters {
+            k1h,
+            kxh,
+            theta_top,
+            deepest: ROW_DEPTHS * offset_reach(lattice) * h,
+        }
+    }
+
+    /// Whether and how depth z of an XZ section on `lattice` takes its remainder from
+    /// the rows: depths of the full expansion and of the sub-cell split down to the
+    /// deepest the rows serve, whose remainder is within the rows' reach or summed in
+    /// bands. `prepare_row` builds the rows of exactly these depths and `fill_parts`
+    /// leaves them out of the table.
+    fn row_plan(&self, lattice: &OffsetLattice, z: f64) -> Option<RowPlan> {
+        let RowParameters {
+            kxh,
+            theta_top,
+            deepest,
+            ..
+        } = self.row_parameters(lattice);
+        let method = self.method_at(z, lattice);
+        let sub_cell = method == StressMethod::SubCell;
+        if !(sub_cell || method == StressMethod::Full) || z > deepest {
+            return None;
+        }
+        let h = lattice.cell;
+        let lambda = self.decay_length(self.layer(z), z);
+        let banded = sub_cell || needs_bands(lattice, lambda);
+        let mut theta_cut = ALIAS_DECAY * h / lambda;
+        if banded {
+            theta_cut = theta_cut.min(BAND_EDGE * kxh?);
+        } else if theta_cut > theta_top {
+            return None;
+        }
+        Some(RowPlan {
+            banded,
+            theta_cut,
+            // The sub-cell split's slope carrier is at least a cell deep (as in
+            // `fill_parts`), and so is its remainder.
+            mu: if sub_cell { lambda.max(h) } else { lambda },
+        })
+    }
 }
 
 /// One depth of an XZ section that takes its remainder from the rows: whether it is

@@ -40,8 +40,8 @@ mod row_basis;
 mod sections;
 
 pub use kernels::{
-    love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice, RowSource,
-    StressKernels, COMPONENTS,
+    love_rectangle_stresses, HomogeneousStressKernels, InfluenceTable, OffsetLattice, PreparedRow,
+    RowSource, StressKernels, COMPONENTS,
 };
 pub use layered_kernels::{LayeredStressKernels, StressMethod};
 pub use request::{

@@ -174,55 +174,67 @@ pub(crate) fn xz_plane(
     // The pressure and the row, for the part of the kernels a body sums against the
     // pressure's spectrum (the row's offset from source row 0 is that of row l_max
     // plus l_max).
-    let mut source = RowSource::new(pressure, nx, ny, y_first + l_max as f64);
-    kernels.prepare_row(&lattice, &mut source, depths);
+    let source = RowSource::new(pressure, nx, ny, y_first + l_max as f64);
     let scratch_len = forward.get_scratch_len().max(inverse.get_scratch_len());
     let scale = 1.0 / width as f64;
-    let per_depth: Vec<Components> = per_thread_map(
-        depths,
-        || {
-            (
-                InfluenceTable::default(),
-                vec![0.0; width],
-                vec![Complex::default(); half],
-                vec![Complex::default(); half],
-                vec![Complex::default(); scratch_len],
-            )
-        },
-        |(table, real, spec, acc, scratch), &z| {
-            let mut row: Components = std::array::from_fn(|_| vec![0.0; nx]);
-            kernels.fill_row(z, &lattice, table, &source, &mut row);
-            let mut out: Components = Default::default();
-            for (c, o) in out.iter_mut().enumerate() {
-                acc.fill(Complex::default());
-                let even = parity.is_none_or(|even| even[c]);
-                for group in &groups {
-                    let m = group.m;
-                    let p_spec = if even { &group.plus } else { &group.minus };
-                    let row = &table.values[c][m * lattice.cols..(m + 1) * lattice.cols];
-                    // Wrap-around order: offsets 0..nx-1, an unused slot, then
-                    // the negative offsets -(nx-1)..-1.
-                    real[..nx].copy_from_slice(&row[nx - 1..]);
-                    real[nx] = 0.0;
-                    real[nx + 1..].copy_from_slice(&row[..nx - 1]);
-                    forward
-                        .process_with_scratch(real, spec, scratch)
-                        .expect("FFT lengths are fixed by the plan");
-                    for ((a, k), p) in acc.iter_mut().zip(spec.iter()).zip(p_spec) {
-                        *a += k * p;
+    // The body's work shared by the depths is built while the depths' tables are
+    // (its own parallel parts leave cores idle that the depths take), and added last.
+    let each_depth = || {
+        per_thread_map(
+            depths,
+            || {
+                (
+                    InfluenceTable::default(),
+                    vec![0.0; width],
+                    vec![Complex::default(); half],
+                    vec![Complex::default(); half],
+                    vec![Complex::default(); scratch_len],
+                )
+            },
+            |(table, real, spec, acc, scratch), &z| {
+                let mut row: Components = std::array::from_fn(|_| vec![0.0; nx]);
+                kernels.fill_row(z, &lattice, table, &source, &mut row);
+                let mut out: Components = Default::default();
+                for (c, o) in out.iter_mut().enumerate() {
+                    acc.fill(Complex::default());
+                    let even = parity.is_none_or(|even| even[c]);
+                    for group in &groups {
+                        let m = group.m;
+                        let p_spec = if even { &group.plus } else { &group.minus };
+                        let row = &table.values[c][m * lattice.cols..(m + 1) * lattice.cols];
+                        // Wrap-around order: offsets 0..nx-1, an unused slot, then
+                        // the negative offsets -(nx-1)..-1.
+                        real[..nx].copy_from_slice(&row[nx - 1..]);
+                        real[nx] = 0.0;
+                        real[nx + 1..].copy_from_slice(&row[..nx - 1]);
+                        forward
+                            .process_with_scratch(real, spec, scratch)
+                            .expect("FFT lengths are fixed by the plan");
+                        for ((a, k), p) in acc.iter_mut().zip(spec.iter()).zip(p_spec) {
+                            *a += k * p;
+                        }
                     }
+                    acc[0].im = 0.0;
+                    acc[nx].im = 0.0;
+                    inverse
+                        .process_with_scratch(acc, real, scratch)
+                        .expect("FFT lengths are fixed by the plan");
+                    o.extend(real[..nx].iter().zip(&row[c]).map(|(v, r)| v * scale + r));
                 }
-                acc[0].im = 0.0;
-                acc[nx].im = 0.0;
-                inverse
-                    .process_with_scratch(acc, real, scratch)
-                    .expect("FFT lengths are fixed by the plan");
-                o.extend(real[..nx].iter().zip(&row[c]).map(|(v, r)| v * scale + r));
-            }
-            depth_done();
-            out
-        },
+                depth_done();
+                out
+            },
+        )
+    };
+    let (prepared, mut per_depth): (_, Vec<Components>) = rayon::join(
+        || kernels.prepare_row(&lattice, &source, depths),
+        each_depth,
     );
+    if let Some(prepared) = &prepared {
+        for (out, &z) in per_depth.iter_mut().zip(depths) {
+            kernels.add_prepared_row(z, prepared, out);
+        }
+    }
     gather(per_depth, nx)
 }
 
