@@ -1829,11 +1829,21 @@ impl BoxSpectrum {
         }
         let ns: Vec<usize> = (0..needed.len()).filter(|&n| needed[n]).collect();
         let values: Vec<[f64; 4]> = ns
-            .par_iter()
-            .map(|&n| {
-                let theta = 2.0 * PI * (n as f64).sqrt() / len as f64;
-                let share = self.high_pass(theta);
-                self.radial_table.eval(theta).map(|v| v * share)
+            .par_chunks(256)
+            .flat_map_iter(|ns| {
+                let thetas: Vec<f64> = ns
+                    .iter()
+                    .map(|&n| 2.0 * PI * (n as f64).sqrt() / len as f64)
+                    .collect();
+                let radial = self.radial_table.eval_many(&thetas);
+                thetas
+                    .into_iter()
+                    .zip(radial)
+                    .map(|(theta, r)| {
+                        let share = self.high_pass(theta);
+                        r.map(|v| v * share)
+                    })
+                    .collect::<Vec<_>>()
             })
             .collect();
         let mut table = vec![[0.0; 4]; needed.len()];
@@ -2053,16 +2063,21 @@ impl RadialTable {
     }
 
     fn eval(&self, theta: f64) -> [f64; 4] {
+        self.interpolant(theta).eval(theta)
+    }
+
+    /// The interpolant that holds theta.
+    fn interpolant(&self, theta: f64) -> &InterleavedPanels<4> {
         if theta >= self.geometric_from && !self.geometric.is_empty() {
             let i = self
                 .geometric
                 .partition_point(|&(lo, _)| lo <= theta)
                 .saturating_sub(1);
-            return self.geometric[i].1.eval(theta);
+            return &self.geometric[i].1;
         }
         if theta >= self.uniform_from {
             if let Some(u) = &self.uniform {
-                return u.eval(theta);
+                return u;
             }
         }
         let i = if theta < self.theta_graded {
@@ -2070,6 +2085,28 @@ impl RadialTable {
         } else {
             1 + (theta / self.theta_graded).log2().floor() as usize
         };
-        self.graded[i.min(self.graded.len() - 1)].eval(theta)
+        &self.graded[i.min(self.graded.len() - 1)]
+    }
+
+    /// [`Self::eval`] at every theta of `thetas`, bitwise the same: four at a time
+    /// where they share an interpolant (ascending thetas mostly do), so that their
+    /// recurrences overlap.
+    fn eval_many(&self, thetas: &[f64]) -> Vec<[f64; 4]> {
+        let mut out = Vec::with_capacity(thetas.len());
+        let mut chunks = thetas.chunks_exact(4);
+        for chunk in &mut chunks {
+            let four = [chunk[0], chunk[1], chunk[2], chunk[3]];
+            let first = self.interpolant(four[0]);
+            if four
+                .iter()
+                .all(|&t| std::ptr::eq(self.interpolant(t), first))
+            {
+                out.extend(first.eval_batch(four));
+            } else {
+                out.extend(four.map(|t| self.eval(t)));
+            }
+        }
+        out.extend(chunks.remainder().iter().map(|&t| self.eval(t)));
+        out
     }
 }
