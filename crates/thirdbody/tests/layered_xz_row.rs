@@ -191,6 +191,43 @@ fn sub_cell_layers_xz_section_is_the_direct_sum_of_the_table() {
     }
 }
 
+/// Rows the y pairing meets unevenly: the smallest windows (odd and even, taller than
+/// wide), rows outside the window (every source row on one side: no pairs) and on
+/// the last row's centre; each against the direct sum of the table at every signed
+/// offset.
+#[test]
+fn uneven_windows_and_rows_are_the_direct_sum_of_the_table() {
+    let body = thin_topped_stack();
+    for (nx, ny, cell) in [(9, 8, 0.1), (8, 11, 0.1), (12, 8, 0.05)] {
+        let grid = Grid::centred(nx, ny, cell, [0.0, 0.0]).unwrap();
+        let p = pressure(&grid);
+        for y in [0.37, 2.5, -1.0, grid.y(ny - 1)] {
+            let depths = [0.0, 0.05, 0.6];
+            let section = Section::XzPlane {
+                y,
+                depths: depths.to_vec(),
+            };
+            let field = stresses(&grid, &p, &body, &section).unwrap();
+            for (k, &z) in depths.iter().enumerate() {
+                let expected = direct(&grid, &p, &body, y, z);
+                let peak = expected
+                    .iter()
+                    .flatten()
+                    .fold(0.0f64, |m, v| m.max(v.abs()));
+                for (c, e) in expected.iter().enumerate() {
+                    for (i, v) in e.iter().enumerate() {
+                        let got = field.components[c][field.index(i, 0, k)];
+                        assert!(
+                            (got - v).abs() < 1e-12 * peak,
+                            "{nx} x {ny}, y {y}, z {z}, component {c}: {got} against {v}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// A depth's stresses do not depend on the other depths of its section: the rows
 /// are built from the lattice, the stack and the pressure only (the Python package
 /// computes a section a few depths at a time and must equal the CLI's).
