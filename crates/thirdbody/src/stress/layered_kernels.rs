@@ -1962,21 +1962,41 @@ impl BoxSpectrum {
                 if ty_.abs() > theta_cut {
                     continue;
                 }
-                for (&tx_, &wx) in x.theta.iter().zip(&x.weight) {
+                // Four alias terms at a time (their radial values evaluated together
+                // where all four are within the cut), added in order.
+                for (txs, wxs) in x.theta.chunks(4).zip(x.weight.chunks(4)) {
                     // |k| h; the wave numbers are bounded (a few times 2 pi),
                     // so hypot's overflow guard is not needed.
-                    let theta = (tx_ * tx_ + ty_ * ty_).sqrt();
-                    if theta > theta_cut {
-                        continue;
+                    let mut thetas = [f64::INFINITY; 4];
+                    for (t, &tx_) in thetas.iter_mut().zip(txs) {
+                        *t = (tx_ * tx_ + ty_ * ty_).sqrt();
                     }
-                    let high_pass = self.high_pass(theta);
-                    let r = self.radial_table.eval(theta).map(|v| v * high_pass);
-                    let (c, s) = if theta > 0.0 {
-                        (tx_ / theta, ty_ / theta)
+                    let radial = if thetas.iter().all(|&t| t <= theta_cut) {
+                        self.radial_table.eval_four(thetas)
                     } else {
-                        (1.0, 0.0)
+                        thetas.map(|t| {
+                            if t <= theta_cut {
+                                self.radial_table.eval(t)
+                            } else {
+                                [0.0; 4]
+                            }
+                        })
                     };
-                    add(r, c, s, wx, wy);
+                    for ((&tx_, &wx), (&theta, r)) in
+                        txs.iter().zip(wxs).zip(thetas.iter().zip(radial))
+                    {
+                        if theta > theta_cut {
+                            continue;
+                        }
+                        let high_pass = self.high_pass(theta);
+                        let r = r.map(|v| v * high_pass);
+                        let (c, s) = if theta > 0.0 {
+                            (tx_ / theta, ty_ / theta)
+                        } else {
+                            (1.0, 0.0)
+                        };
+                        add(r, c, s, wx, wy);
+                    }
                 }
             }
         }
@@ -2100,23 +2120,27 @@ impl RadialTable {
         &self.graded[i.min(self.graded.len() - 1)]
     }
 
-    /// [`Self::eval`] at every theta of `thetas`, bitwise the same: four at a time
-    /// where they share an interpolant (ascending thetas mostly do), so that their
-    /// recurrences overlap.
+    /// [`Self::eval`] at four thetas, bitwise the same: together where they share an
+    /// interpolant (neighbouring thetas mostly do), so that their recurrences overlap.
+    fn eval_four(&self, four: [f64; 4]) -> [[f64; 4]; 4] {
+        let first = self.interpolant(four[0]);
+        if four
+            .iter()
+            .all(|&t| std::ptr::eq(self.interpolant(t), first))
+        {
+            first.eval_batch(four)
+        } else {
+            four.map(|t| self.eval(t))
+        }
+    }
+
+    /// [`Self::eval`] at every theta of `thetas`, bitwise the same, four at a time
+    /// ([`Self::eval_four`]).
     fn eval_many(&self, thetas: &[f64]) -> Vec<[f64; 4]> {
         let mut out = Vec::with_capacity(thetas.len());
         let mut chunks = thetas.chunks_exact(4);
         for chunk in &mut chunks {
-            let four = [chunk[0], chunk[1], chunk[2], chunk[3]];
-            let first = self.interpolant(four[0]);
-            if four
-                .iter()
-                .all(|&t| std::ptr::eq(self.interpolant(t), first))
-            {
-                out.extend(first.eval_batch(four));
-            } else {
-                out.extend(four.map(|t| self.eval(t)));
-            }
+            out.extend(self.eval_four([chunk[0], chunk[1], chunk[2], chunk[3]]));
         }
         out.extend(chunks.remainder().iter().map(|&t| self.eval(t)));
         out
