@@ -527,10 +527,10 @@ impl LayeredStressKernels {
         // ([`StressKernels::prepare_row`]) hold this depth's remainder (below the
         // band split kx, for a depth summed in bands); they are added to the row
         // afterwards ([`StressKernels::add_prepared_row`]).
-        let from_rows = row
+        let rows_plan = row
             .as_ref()
-            .is_some_and(|(source, _)| row_lattice(lattice, source))
-            && self.row_plan(lattice, z).is_some();
+            .filter(|(source, _)| row_lattice(lattice, source))
+            .and_then(|_| self.row_plan(lattice, z));
         if sub_cell || needs_bands(lattice, lambda) {
             // The short waves need aliases on a box of `REACH / k1` cells: in bands.
             // The sub-cell split caps and tapers the top band's aliases.
@@ -538,16 +538,16 @@ impl LayeredStressKernels {
                 taper: sub_cell,
                 edge: sub_cell && z > 0.0,
             };
-            match self.row_parameters(lattice).kxh {
+            match rows_plan.and_then(|plan| plan.band_split) {
                 // Bands down to kx on small boxes, in the table; below kx from the rows.
-                Some(kxh) if from_rows => {
+                Some(kxh) => {
                     self.add_bands(lattice, lambda, top, &remainder, table, kxh / lattice.cell)
                 }
-                _ => self.add_banded_remainder(lattice, lambda, top, &remainder, table),
+                None => self.add_banded_remainder(lattice, lambda, top, &remainder, table),
             }
             return;
         }
-        if from_rows {
+        if rows_plan.is_some() {
             return;
         }
         let short_waves = Pass::Short {
@@ -1071,10 +1071,11 @@ impl StressKernels for LayeredStressKernels {
             .par_iter()
             .filter_map(|&z| {
                 let RowPlan {
-                    banded,
+                    band_split,
                     theta_cut,
                     mu,
                 } = self.row_plan(lattice, z)?;
+                let banded = band_split.is_some();
                 let layer = self.layer(z);
                 let (carrier, r1) = self.carriers(layer, z);
                 let values = |thetas: &[f64], solved: &[LayeredSolver]| -> Vec<[f64; 4]> {
@@ -1495,8 +1496,9 @@ struct RowParameters {
 
 /// How one depth takes its remainder from an XZ section's rows.
 struct RowPlan {
-    /// Summed in bands: the rows hold the part below kx (the band family's share).
-    banded: bool,
+    /// For a depth summed in bands, the band split `kx h`: the rows hold the part
+    /// below kx (the band family's share), small boxes the bands above it.
+    band_split: Option<f64>,
     /// The `|k| h` beyond which the depth's remainder is negligible (or, banded, kx's
     /// band edge).
     theta_cut: f64,
@@ -1551,13 +1553,17 @@ impl LayeredStressKernels {
         let lambda = self.decay_length(self.layer(z), z);
         let banded = sub_cell || needs_bands(lattice, lambda);
         let mut theta_cut = ALIAS_DECAY * h / lambda;
-        if banded {
-            theta_cut = theta_cut.min(BAND_EDGE * kxh?);
+        let band_split = if banded {
+            let kxh = kxh?;
+            theta_cut = theta_cut.min(BAND_EDGE * kxh);
+            Some(kxh)
         } else if theta_cut > theta_top {
             return None;
-        }
+        } else {
+            None
+        };
         Some(RowPlan {
-            banded,
+            band_split,
             theta_cut,
             // The sub-cell split's slope carrier is at least a cell deep (as in
             // `fill_parts`), and so is its remainder.
