@@ -8,7 +8,12 @@
 //! the top layer and below it, for a coating and a stack of three layers, with an
 //! asymmetric pressure. The two routes share the kernels' split and box; the row
 //! interpolates the transfer on Chebyshev panels shared by all depths where the table
-//! has one set per depth, so they agree to about 1e-13 of the peak.
+//! has one set per depth, so they agree to about 1e-13 of the peak. A depth summed in
+//! bands takes the part below the rows' band split from the rows' box, where the
+//! table goes on in bands on boxes of their own: the two then differ by their boxes'
+//! truncation (the bands' reach, `REACH` in `layered_kernels.rs`), measured at 1.3e-12
+//! of the peak on the small windows of the uneven-window test; each route is within
+//! 8.2e-12 (rows) and 7.0e-12 (table) of its own sums with 1.5 times the reach there.
 
 use thirdbody::body::layered::{Base, Ply, Stack};
 use thirdbody::stress::{stress_kernels, stresses, InfluenceTable, OffsetLattice, Section, Side};
@@ -217,8 +222,9 @@ fn uneven_windows_and_rows_are_the_direct_sum_of_the_table() {
                 for (c, e) in expected.iter().enumerate() {
                     for (i, v) in e.iter().enumerate() {
                         let got = field.components[c][field.index(i, 0, k)];
+                        // The boxes' truncation (see the module's head): 1.3e-12.
                         assert!(
-                            (got - v).abs() < 1e-12 * peak,
+                            (got - v).abs() < 5e-12 * peak,
                             "{nx} x {ny}, y {y}, z {z}, component {c}: {got} against {v}"
                         );
                     }
