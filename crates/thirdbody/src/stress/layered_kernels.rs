@@ -1905,7 +1905,10 @@ impl BoxSpectrum {
     /// jy)` (the second is `None` where it is the first: `jy` 0 or `len / 2`). The two
     /// rows' alias terms are at `(kx, ky)` and `(kx, -ky)`: the same |k| (one radial
     /// evaluation for both), the same `c`, the opposite `s`, and conjugate phases
-    /// along y.
+    /// along y. The terms of one alias order along y are summed first with their
+    /// weights along x (`row`), then the row is weighted along y for both: the partner
+    /// takes the same row sums with the conjugate weight and the signs of the
+    /// components odd in `s` flipped.
     fn at_pair(
         &self,
         jx: usize,
@@ -1918,14 +1921,15 @@ impl BoxSpectrum {
         let paired = jy != 0 && 2 * jy != self.ay.len;
         let mut acc = [Complex::<f64>::default(); COMPONENTS];
         let mut partner = [Complex::<f64>::default(); COMPONENTS];
-        // The six real factors of one alias term (`xixi c^2 + etaeta s^2`, `xixi s^2 +
-        // etaeta c^2`, `zz`, `(xixi - etaeta) c s`, `xiz c`, `xiz s`; the shears times
-        // i), added with weight w to the row and with w' to its partner (s -> -s).
-        let mut add = |[xixi, etaeta, zz, xiz]: [f64; 4],
-                       c: f64,
-                       s: f64,
-                       wx: Complex<f64>,
-                       wy: Complex<f64>| {
+        // One alias order along y: `sum_x wx f` of the six real factors of each term
+        // (`xixi c^2 + etaeta s^2`, `xixi s^2 + etaeta c^2`, `zz`, `(xixi - etaeta) c
+        // s`, `xiz c`, `xiz s`; the shears times i), added with wy to the row and with
+        // its conjugate to the partner (s -> -s flips the fourth and sixth).
+        let add_term = |row: &mut [Complex<f64>; COMPONENTS],
+                        [xixi, etaeta, zz, xiz]: [f64; 4],
+                        c: f64,
+                        s: f64,
+                        wx: Complex<f64>| {
             let f = [
                 xixi * c * c + etaeta * s * s,
                 xixi * s * s + etaeta * c * c,
@@ -1934,23 +1938,25 @@ impl BoxSpectrum {
                 xiz * c,
                 xiz * s,
             ];
-            let w = wx * wy;
-            let iw = Complex::new(-w.im, w.re);
-            for q in 0..3 {
-                acc[q] += w * f[q];
+            for (r, v) in row.iter_mut().zip(f) {
+                *r += wx * v;
             }
-            acc[3] += w * f[3];
-            acc[4] += iw * f[4];
-            acc[5] += iw * f[5];
+        };
+        let mut add_row = |row: [Complex<f64>; COMPONENTS], wy: Complex<f64>| {
+            let i = Complex::new(0.0, 1.0);
+            for q in 0..4 {
+                acc[q] += wy * row[q];
+            }
+            acc[4] += i * wy * row[4];
+            acc[5] += i * wy * row[5];
             if paired {
-                let w = wx * wy.conj();
-                let iw = Complex::new(-w.im, w.re);
+                let wy = wy.conj();
                 for q in 0..3 {
-                    partner[q] += w * f[q];
+                    partner[q] += wy * row[q];
                 }
-                partner[3] -= w * f[3];
-                partner[4] += iw * f[4];
-                partner[5] -= iw * f[5];
+                partner[3] -= wy * row[3];
+                partner[4] += i * wy * row[4];
+                partner[5] -= i * wy * row[5];
             }
         };
         if let Some(squares) = &self.squares {
@@ -1960,6 +1966,7 @@ impl BoxSpectrum {
                 if b > n_max {
                     continue;
                 }
+                let mut row = [Complex::<f64>::default(); COMPONENTS];
                 for (&ix, &wx) in x.index.iter().zip(&x.weight) {
                     let n = ix * ix + b;
                     if n > n_max {
@@ -1971,8 +1978,9 @@ impl BoxSpectrum {
                     } else {
                         (1.0, 0.0)
                     };
-                    add(squares[n as usize], c, s, wx, wy);
+                    add_term(&mut row, squares[n as usize], c, s, wx);
                 }
+                add_row(row, wy);
             }
         } else {
             let theta_cut = self.theta_cut;
@@ -1980,6 +1988,7 @@ impl BoxSpectrum {
                 if ty_.abs() > theta_cut {
                     continue;
                 }
+                let mut row = [Complex::<f64>::default(); COMPONENTS];
                 // Four alias terms at a time (their radial values evaluated together
                 // where all four are within the cut), added in order.
                 for (txs, wxs) in x.theta.chunks(4).zip(x.weight.chunks(4)) {
@@ -2013,9 +2022,10 @@ impl BoxSpectrum {
                         } else {
                             (1.0, 0.0)
                         };
-                        add(r, c, s, wx, wy);
+                        add_term(&mut row, r, c, s, wx);
                     }
                 }
+                add_row(row, wy);
             }
         }
         let norm = self.norm;
