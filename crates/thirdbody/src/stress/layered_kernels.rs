@@ -71,7 +71,9 @@
 //!    low-pass filter whose real-space kernel has all moments zero: it changes the
 //!    kernel only where that varies on the scale `h / 128`, i.e. nowhere but on the
 //!    loaded cell's own edges). The long waves `chi(k / k1) T` are split again into
-//!    bands `chi(k / k_hi) - chi(k / k_lo)`, `k_lo = k_hi / 4`, down to the full
+//!    bands `chi(k / k_hi) - chi(k / k_lo)`, `k_lo = k_hi / 4` (`/ 2` for decay
+//!    lengths under 1.5 cells; the ladder passes through the XZ rows' split `kx h =
+//!    3/8`, and no band is narrower than a ratio 1.5), down to the full
 //!    expansion's `k0 ~ 4 / span`: each band's kernel falls off within `REACH /
 //!    k_lo` (as the short waves' within `REACH / k1`), so it is summed on a box that
 //!    much wider than the offsets it reaches, with the few aliases its band edge
