@@ -1686,6 +1686,9 @@ struct BoxSpectrum {
     /// distinct one is evaluated once (far fewer than the terms of the sum: sums of two
     /// squares are sparse). `None` for a table too large to keep.
     squares: Option<Vec<[f64; 4]>>,
+    /// The sub-cell split's top band where `squares` is too large, summed once for
+    /// every base pair ([`BoxSpectrum::by_radius`]); `at_pair` reads it.
+    half_plane: Option<Vec<[Complex<f64>; COMPONENTS]>>,
 }
 
 /// The largest squared radius [`BoxSpectrum`] tabulates (16 MB of values).
@@ -1829,8 +1832,163 @@ impl BoxSpectrum {
             theta_cut: theta_max,
             norm,
             squares: None,
+            half_plane: None,
         };
         spectrum.squares = spectrum.tabulate_squares();
+        // The sub-cell split's top band beyond the squared-radii table (a decay length
+        // under about a tenth of a cell): once per |k| for every base pair. (Within the
+        // table, per base pair was 8 % faster: a section through a 0.19-cell layer.)
+        if spectrum.squares.is_none()
+            && matches!(pass, Pass::Short { taper: true, .. })
+            && spectrum.ax.len == spectrum.ay.len
+        {
+            spectrum.half_plane = Some(spectrum.by_radius());
+        }
+        spectrum
+    }
+
+    /// The half plane's coefficients (`jx <= len / 2`, every `jy`; index `jx len +
+    /// jy`) of a square box, visiting each |k| once: a wavenumber `(ix, iy)` of the
+    /// lattice with `0 <= iy <= ix` stands for up to eight, `(+-ix, +-iy)` and `(+-iy,
+    /// +-ix)`, which share |k| and so one radial evaluation; each is added to its base
+    /// pair `(ix mod len, iy mod len)` with its weights along x and y (those of
+    /// [`AxisTerms`]). The same terms as [`Self::at_pair`]'s, summed in another order,
+    /// at a quarter of its radial evaluations (it sums the half plane): the sub-cell
+    /// split's top band has about `pi (32 len h / (2 pi lambda))^2 / 2` terms per depth
+    /// (millions for a decay length under a tenth of a cell). Measured: a section
+    /// through a 0.064-cell layer on a rigid base, 4.0 -> 2.4 s.
+    fn by_radius(&self) -> Vec<[Complex<f64>; COMPONENTS]> {
+        let len = self.ax.len;
+        // Per axis and signed index: the weight and the base index (`jx` only on the
+        // half plane), zero weight where the axis has no term.
+        struct Lookup {
+            lowest: i64,
+            weight: Vec<Complex<f64>>,
+            base: Vec<usize>,
+            kept: Vec<bool>,
+        }
+        let lookup = |terms: &[AxisTerms], half_plane: bool| -> Lookup {
+            let lowest = terms
+                .iter()
+                .flat_map(|t| &t.index)
+                .min()
+                .copied()
+                .unwrap_or(0);
+            let highest = terms
+                .iter()
+                .flat_map(|t| &t.index)
+                .max()
+                .copied()
+                .unwrap_or(0);
+            let size = (highest - lowest + 1) as usize;
+            let mut table = Lookup {
+                lowest,
+                weight: vec![Complex::default(); size],
+                base: vec![0; size],
+                kept: vec![false; size],
+            };
+            for (j, t) in terms.iter().enumerate() {
+                for (&i, &w) in t.index.iter().zip(&t.weight) {
+                    let k = (i - lowest) as usize;
+                    table.weight[k] = w;
+                    table.base[k] = j;
+                    table.kept[k] = !half_plane || j <= len / 2;
+                }
+            }
+            table
+        };
+        let (lx, ly) = (lookup(&self.tx, true), lookup(&self.ty, false));
+        let slot = |l: &Lookup, i: i64| -> Option<usize> {
+            let k = usize::try_from(i - l.lowest).ok()?;
+            l.kept.get(k).copied().unwrap_or(false).then_some(k)
+        };
+        let n_max = (self.theta_cut * len as f64 / (2.0 * PI)).powi(2).floor() as i64;
+        let reach = ((n_max as f64).sqrt().floor() as i64).max(0);
+        // A wedge point has an image among the axes' terms only if its larger index is
+        // within the wider axis's extent and its smaller within the narrower's (the
+        // alias orders are capped, the decay's cut may reach far beyond them).
+        let extent = |l: &Lookup| l.lowest.abs().max(l.lowest + l.weight.len() as i64 - 1);
+        let (narrow, wide) = (extent(&lx).min(extent(&ly)), extent(&lx).max(extent(&ly)));
+        let mut spectrum = vec![[Complex::<f64>::default(); COMPONENTS]; (len / 2 + 1) * len];
+        let i = Complex::new(0.0, 1.0);
+        let mut add = |[xixi, etaeta, zz, xiz]: [f64; 4], ix: i64, iy: i64, n: i64| {
+            // The distinct images (a, b) of (ix, iy).
+            let (sx, sy) = (if ix == 0 { 1 } else { 2 }, if iy == 0 { 1 } else { 2 });
+            let mut images = [(0i64, 0i64); 8];
+            let mut count = 0;
+            for k in 0..sx * sy {
+                let a = if k % 2 == 0 { ix } else { -ix };
+                let b = if k / 2 == 0 { iy } else { -iy };
+                images[count] = (a, b);
+                count += 1;
+                if ix != iy {
+                    images[count] = (b, a);
+                    count += 1;
+                }
+            }
+            let inverse = if n > 0 { 1.0 / (n as f64).sqrt() } else { 0.0 };
+            for &(a, b) in &images[..count] {
+                let (Some(kx), Some(ky)) = (slot(&lx, a), slot(&ly, b)) else {
+                    continue;
+                };
+                let (c, s) = if n > 0 {
+                    (a as f64 * inverse, b as f64 * inverse)
+                } else {
+                    (1.0, 0.0)
+                };
+                let f = [
+                    xixi * c * c + etaeta * s * s,
+                    xixi * s * s + etaeta * c * c,
+                    zz,
+                    (xixi - etaeta) * c * s,
+                    xiz * c,
+                    xiz * s,
+                ];
+                let w = lx.weight[kx] * ly.weight[ky];
+                let cell = &mut spectrum[lx.base[kx] * len + ly.base[ky]];
+                for q in 0..4 {
+                    cell[q] += w * f[q];
+                }
+                cell[4] += i * w * f[4];
+                cell[5] += i * w * f[5];
+            }
+        };
+        // The wedge's points four at a time (their radial values together).
+        let mut batch: Vec<(i64, i64, i64, f64)> = Vec::with_capacity(4);
+        let mut flush = |batch: &mut Vec<(i64, i64, i64, f64)>| {
+            let mut thetas = [0.0; 4];
+            for (t, p) in thetas.iter_mut().zip(batch.iter()) {
+                *t = p.3;
+            }
+            let radial = self.radial_table.eval_four(thetas);
+            for (&(ix, iy, n, theta), r) in batch.iter().zip(radial) {
+                let share = self.high_pass(theta);
+                add(r.map(|v| v * share), ix, iy, n);
+            }
+            batch.clear();
+        };
+        for ix in 0..=reach.min(wide) {
+            for iy in 0..=ix.min(narrow) {
+                let n = ix * ix + iy * iy;
+                if n > n_max {
+                    break;
+                }
+                let theta = 2.0 * PI * (n as f64).sqrt() / len as f64;
+                batch.push((ix, iy, n, theta));
+                if batch.len() == 4 {
+                    flush(&mut batch);
+                }
+            }
+        }
+        if !batch.is_empty() {
+            flush(&mut batch);
+        }
+        let norm = self.norm;
+        for cell in &mut spectrum {
+            for v in cell.iter_mut() {
+                *v *= norm;
+            }
+        }
         spectrum
     }
 
@@ -1919,8 +2077,15 @@ impl BoxSpectrum {
         [Complex<f64>; COMPONENTS],
         Option<[Complex<f64>; COMPONENTS]>,
     ) {
-        let (x, y) = (&self.tx[jx], &self.ty[jy]);
         let paired = jy != 0 && 2 * jy != self.ay.len;
+        if let Some(half_plane) = &self.half_plane {
+            let len = self.ay.len;
+            return (
+                half_plane[jx * len + jy],
+                paired.then(|| half_plane[jx * len + len - jy]),
+            );
+        }
+        let (x, y) = (&self.tx[jx], &self.ty[jy]);
         let mut acc = [Complex::<f64>::default(); COMPONENTS];
         let mut partner = [Complex::<f64>::default(); COMPONENTS];
         // One alias order along y: `sum_x wx f` of the six real factors of each term
@@ -2174,5 +2339,94 @@ impl RadialTable {
         }
         out.extend(chunks.remainder().iter().map(|&t| self.eval(t)));
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::layered::Ply;
+
+    /// The sub-cell split's top band summed once per |k| (`BoxSpectrum::by_radius`)
+    /// against the same box's sum per base pair (`at_pair`'s own alias loop), for a
+    /// synthetic transfer decaying over 0.035 cell: offsets on whole cells and on half
+    /// cells along y (the edge axis, untapered), and along x 128 tapered alias orders.
+    #[test]
+    fn the_top_band_by_radius_is_the_sum_per_base_pair() {
+        let material = Elastic {
+            young: 1.0,
+            poisson: 0.3,
+        };
+        let stack = Stack {
+            layers: vec![Ply {
+                material,
+                thickness: 0.02,
+            }],
+            base: Base::HalfSpace(material),
+        };
+        let lambda = 0.035;
+        let eval = |_: &mut LayeredSolver, k: f64| {
+            let t = k * lambda;
+            let e = (-t).exp();
+            [
+                e * (1.0 + 0.3 * t),
+                -0.4 * e,
+                e * (1.0 - 0.2 * t * t),
+                0.6 * t * e,
+            ]
+        };
+        let radial = Radial {
+            stack: &stack,
+            eval: &eval,
+        };
+        let pass = Pass::Short {
+            taper: true,
+            edge: true,
+        };
+        for y_first in [-6.0, -5.5] {
+            let lattice = OffsetLattice {
+                cell: 1.0,
+                x_first: -6.0,
+                cols: 13,
+                y_first,
+                rows: 12,
+            };
+            let spectrum = |by_radius: bool| {
+                let mut s =
+                    BoxSpectrum::new(&lattice, lambda, 0.02, SUB_CELL_SPLIT, &radial, pass, None);
+                if !by_radius {
+                    s.half_plane = None;
+                }
+                s
+            };
+            let (fast, slow) = (spectrum(true), spectrum(false));
+            assert!(fast.half_plane.is_some() && slow.squares.is_none());
+            assert!(fast.ax.tapered && fast.ax.aliases == SUB_CELL_ALIASES);
+            let len = fast.ay.len;
+            let mut pairs = Vec::new();
+            for jx in 0..=len / 2 {
+                for jy in 0..=len / 2 {
+                    pairs.push((jx, jy, fast.at_pair(jx, jy), slow.at_pair(jx, jy)));
+                }
+            }
+            let peak = pairs
+                .iter()
+                .flat_map(|(_, _, _, (a, _))| a.iter().map(|v| v.norm()))
+                .fold(0.0, f64::max);
+            assert!(peak > 0.0);
+            for (jx, jy, (a, pa), (b, pb)) in pairs {
+                let both = a
+                    .iter()
+                    .zip(&b)
+                    .chain(pa.iter().flatten().zip(pb.iter().flatten()));
+                for (u, v) in both {
+                    assert!(
+                        (u - v).norm() < 1e-13 * peak,
+                        "y_first {y_first}, ({jx}, {jy}): {u} against {v}"
+                    );
+                }
+                assert_eq!(pa.is_some(), pb.is_some());
+            }
+        }
     }
 }
