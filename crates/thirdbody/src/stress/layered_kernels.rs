@@ -2414,12 +2414,14 @@ mod tests {
                 .flat_map(|(_, _, _, (a, _))| a.iter().map(|v| v.norm()))
                 .fold(0.0, f64::max);
             assert!(peak > 0.0);
+            let mut worst = 0.0f64;
             for (jx, jy, (a, pa), (b, pb)) in pairs {
                 let both = a
                     .iter()
                     .zip(&b)
                     .chain(pa.iter().flatten().zip(pb.iter().flatten()));
                 for (u, v) in both {
+                    worst = worst.max((u - v).norm() / peak);
                     assert!(
                         (u - v).norm() < 1e-13 * peak,
                         "y_first {y_first}, ({jx}, {jy}): {u} against {v}"
@@ -2427,6 +2429,7 @@ mod tests {
                 }
                 assert_eq!(pa.is_some(), pb.is_some());
             }
+            println!("y_first {y_first}: {worst:.1e} of the peak");
         }
     }
 }
