@@ -1911,7 +1911,7 @@ impl BoxSpectrum {
         let (narrow, wide) = (extent(&lx).min(extent(&ly)), extent(&lx).max(extent(&ly)));
         let mut spectrum = vec![[Complex::<f64>::default(); COMPONENTS]; (len / 2 + 1) * len];
         let i = Complex::new(0.0, 1.0);
-        let mut add = |[xixi, etaeta, zz, xiz]: [f64; 4], ix: i64, iy: i64, n: i64| {
+        let mut add = |radial: [f64; 4], ix: i64, iy: i64, n: i64| {
             // The distinct images (a, b) of (ix, iy).
             let (sx, sy) = (if ix == 0 { 1 } else { 2 }, if iy == 0 { 1 } else { 2 });
             let mut images = [(0i64, 0i64); 8];
@@ -1936,14 +1936,7 @@ impl BoxSpectrum {
                 } else {
                     (1.0, 0.0)
                 };
-                let f = [
-                    xixi * c * c + etaeta * s * s,
-                    xixi * s * s + etaeta * c * c,
-                    zz,
-                    (xixi - etaeta) * c * s,
-                    xiz * c,
-                    xiz * s,
-                ];
+                let f = wave_frame_factors(radial, c, s);
                 let w = lx.weight[kx] * ly.weight[ky];
                 let cell = &mut spectrum[lx.base[kx] * len + ly.base[ky]];
                 for q in 0..4 {
@@ -2088,23 +2081,15 @@ impl BoxSpectrum {
         let (x, y) = (&self.tx[jx], &self.ty[jy]);
         let mut acc = [Complex::<f64>::default(); COMPONENTS];
         let mut partner = [Complex::<f64>::default(); COMPONENTS];
-        // One alias order along y: `sum_x wx f` of the six real factors of each term
-        // (`xixi c^2 + etaeta s^2`, `xixi s^2 + etaeta c^2`, `zz`, `(xixi - etaeta) c
-        // s`, `xiz c`, `xiz s`; the shears times i), added with wy to the row and with
-        // its conjugate to the partner (s -> -s flips the fourth and sixth).
+        // One alias order along y: `sum_x wx f` of each term's six factors
+        // (`wave_frame_factors`; the shears times i), added with wy to the row and
+        // with its conjugate to the partner (s -> -s flips the fourth and sixth).
         let add_term = |row: &mut [Complex<f64>; COMPONENTS],
-                        [xixi, etaeta, zz, xiz]: [f64; 4],
+                        radial: [f64; 4],
                         c: f64,
                         s: f64,
                         wx: Complex<f64>| {
-            let f = [
-                xixi * c * c + etaeta * s * s,
-                xixi * s * s + etaeta * c * c,
-                zz,
-                (xixi - etaeta) * c * s,
-                xiz * c,
-                xiz * s,
-            ];
+            let f = wave_frame_factors(radial, c, s);
             for (r, v) in row.iter_mut().zip(f) {
                 *r += wx * v;
             }
@@ -2201,6 +2186,23 @@ impl BoxSpectrum {
             paired.then(|| partner.map(|a| a * norm)),
         )
     }
+}
+
+/// The six stress components' real factors of one wavenumber from the four wave-frame
+/// functions `[xixi, etaeta, zz, xiz]` at its direction `(c, s) = k / |k|`:
+/// `xixi c^2 + etaeta s^2`, `xixi s^2 + etaeta c^2`, `zz`, `(xixi - etaeta) c s`, `xiz
+/// c`, `xiz s` (sigma_x, sigma_y, sigma_z, tau_xy, and tau_xz, tau_yz, which take a
+/// factor i).
+#[inline]
+fn wave_frame_factors([xixi, etaeta, zz, xiz]: [f64; 4], c: f64, s: f64) -> [f64; COMPONENTS] {
+    [
+        xixi * c * c + etaeta * s * s,
+        xixi * s * s + etaeta * c * c,
+        zz,
+        (xixi - etaeta) * c * s,
+        xiz * c,
+        xiz * s,
+    ]
 }
 
 /// The four wave-frame functions of `theta = k h` on Chebyshev panels, evaluated
