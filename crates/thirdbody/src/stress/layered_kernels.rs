@@ -1868,18 +1868,10 @@ impl BoxSpectrum {
             kept: Vec<bool>,
         }
         let lookup = |terms: &[AxisTerms], half_plane: bool| -> Lookup {
-            let lowest = terms
+            let (lowest, highest) = terms
                 .iter()
                 .flat_map(|t| &t.index)
-                .min()
-                .copied()
-                .unwrap_or(0);
-            let highest = terms
-                .iter()
-                .flat_map(|t| &t.index)
-                .max()
-                .copied()
-                .unwrap_or(0);
+                .fold((i64::MAX, i64::MIN), |(lo, hi), &i| (lo.min(i), hi.max(i)));
             let size = (highest - lowest + 1) as usize;
             let mut table = Lookup {
                 lowest,
